@@ -1,0 +1,14 @@
+"""edmd2d: exact event-driven simulation of many hard disks in two dimensions.
+
+>>> import edmd2d as ed
+>>> box = ed.Box(10.0, 10.0, periodic=True)
+>>> sim = ed.Simulation([[2.0, 5.0], [8.0, 5.0]], [[1.0, 0.0], [0.0, 0.0]], radii=0.5, box=box)
+>>> sim.advance(until=10.0).counts.collisions
+1
+"""
+
+from .geometry import Box, Wall
+from .simulation import Counts, Simulation
+
+__all__ = ["Box", "Wall", "Simulation", "Counts"]
+__version__ = "0.1.0"

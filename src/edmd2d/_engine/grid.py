@@ -1,0 +1,179 @@
+"""Uniform grid: cell index, per-cell doubly linked lists, walls bucketed by cell.
+
+Geometry is passed as two small arrays:
+
+``gi = [ncx, ncy, periodic_x, periodic_y]`` (int64) and
+``gf = [width, height, cell_width, cell_height]`` (float64).
+
+Cells are numbered ``cx + ncx * cy``.  Every cell is at least one largest diameter
+wide, so two disks in contact sit in the same or in neighbouring cells; neighbours
+across a periodic edge are reached with an image shift of one box length.  Because the
+shift is taken from the cell offset (not from a minimum-image search), boxes with only
+1 or 2 cells on a periodic axis are handled exactly: each (cell, shift) pair visited is
+a distinct image.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._jit import njit
+
+
+@njit(inline="always")
+def neighbour(c, offset, ncell, periodic):
+    """Cell index ``c + offset`` on one axis and the image shift (-1, 0, +1), or -1."""
+    n = c + offset
+    if n < 0:
+        if periodic:
+            return n + ncell, -1
+        return -1, 0
+    if n >= ncell:
+        if periodic:
+            return n - ncell, 1
+        return -1, 0
+    return n, 0
+
+
+@njit(inline="always")
+def cell_coord(x, side, ncell):
+    c = int(math.floor(x / side))
+    if c < 0:
+        return 0
+    if c >= ncell:
+        return ncell - 1
+    return c
+
+
+@njit
+def insert(i, c, cell, head, nxt, prv):
+    cell[i] = c
+    h = head[c]
+    nxt[i] = h
+    prv[i] = -1
+    if h >= 0:
+        prv[h] = i
+    head[c] = i
+
+
+@njit
+def remove(i, cell, head, nxt, prv):
+    c = cell[i]
+    p = prv[i]
+    n = nxt[i]
+    if p >= 0:
+        nxt[p] = n
+    else:
+        head[c] = n
+    if n >= 0:
+        prv[n] = p
+
+
+@njit
+def build_cells(pos, gi, gf, cell, head, nxt, prv):
+    """Assign every disk to the cell of its centre and build the lists."""
+    ncx = gi[0]
+    ncy = gi[1]
+    head[:] = -1
+    for i in range(pos.shape[0]):
+        cx = cell_coord(pos[i, 0], gf[2], ncx)
+        cy = cell_coord(pos[i, 1], gf[3], ncy)
+        insert(i, cx + ncx * cy, cell, head, nxt, prv)
+
+
+@njit(inline="always")
+def _segment_hits_rect(ax, ay, bx, by, x0, y0, x1, y1):
+    """Does the segment a->b meet the closed rectangle [x0,x1]x[y0,y1]? (slab clipping)"""
+    t0 = 0.0
+    t1 = 1.0
+    d = (bx - ax, by - ay)
+    lo = (x0 - ax, y0 - ay)
+    hi = (x1 - ax, y1 - ay)
+    for k in range(2):
+        if d[k] == 0.0:
+            if lo[k] > 0.0 or hi[k] < 0.0:
+                return False
+        else:
+            ta = lo[k] / d[k]
+            tb = hi[k] / d[k]
+            if ta > tb:
+                ta, tb = tb, ta
+            if ta > t0:
+                t0 = ta
+            if tb < t1:
+                t1 = tb
+            if t0 > t1:
+                return False
+    return True
+
+
+@njit
+def _bucket_walls(wa, wb, gi, gf, reach, start, wall, sx, sy, fill):
+    ncx = gi[0]
+    ncy = gi[1]
+    width = gf[0]
+    height = gf[1]
+    lx = gf[2]
+    ly = gf[3]
+    rx = 1 if gi[2] else 0
+    ry = 1 if gi[3] else 0
+    count = 0
+    for w in range(wa.shape[0]):
+        for ix in range(-rx, rx + 1):
+            for iy in range(-ry, ry + 1):
+                ax = wa[w, 0] + ix * width
+                ay = wa[w, 1] + iy * height
+                bx = wb[w, 0] + ix * width
+                by = wb[w, 1] + iy * height
+                cx0 = int(math.floor((min(ax, bx) - reach) / lx))
+                cx1 = int(math.floor((max(ax, bx) + reach) / lx))
+                cy0 = int(math.floor((min(ay, by) - reach) / ly))
+                cy1 = int(math.floor((max(ay, by) + reach) / ly))
+                cx0 = max(cx0, 0)
+                cy0 = max(cy0, 0)
+                cx1 = min(cx1, ncx - 1)
+                cy1 = min(cy1, ncy - 1)
+                for cy in range(cy0, cy1 + 1):
+                    for cx in range(cx0, cx1 + 1):
+                        if _segment_hits_rect(
+                            ax, ay, bx, by,
+                            cx * lx - reach, cy * ly - reach,
+                            (cx + 1) * lx + reach, (cy + 1) * ly + reach,
+                        ):
+                            c = cx + ncx * cy
+                            if fill:
+                                k = start[c + 1]
+                                wall[k] = w
+                                sx[k] = ix
+                                sy[k] = iy
+                                start[c + 1] = k + 1
+                            else:
+                                start[c + 1] += 1
+                            count += 1
+    return count
+
+
+def bucket_walls(wa, wb, gi, gf, reach):
+    """CSR lists of the walls (and their periodic images) near each cell.
+
+    A disk whose centre is in cell ``c`` can only touch a wall entry listed in
+    ``wall[start[c]:start[c+1]]``; entry ``k`` is wall ``wall[k]`` shifted by
+    ``(sx[k] * width, sy[k] * height)``.  ``reach`` is the largest radius (plus a
+    rounding margin): a wall is listed for every cell whose rectangle grown by ``reach``
+    it meets.
+    """
+    ncell = int(gi[0] * gi[1])
+    start = np.zeros(ncell + 1, dtype=np.int64)
+    empty = np.zeros(0, dtype=np.int64)
+    _bucket_walls(wa, wb, gi, gf, reach, start, empty, empty, empty, False)
+    np.cumsum(start, out=start)
+    total = int(start[-1])
+    wall = np.empty(total, dtype=np.int64)
+    sx = np.empty(total, dtype=np.int64)
+    sy = np.empty(total, dtype=np.int64)
+    cursor = start.copy()
+    cursor[1:] = start[:-1]
+    _bucket_walls(wa, wb, gi, gf, reach, cursor, wall, sx, sy, True)
+    return start, wall, sx, sy

@@ -1,0 +1,102 @@
+"""One converter for every array argument of the public API.
+
+Each public function passes user input through :func:`as_float_array` (or
+:func:`per_disk`), which returns a C-contiguous float64 array of the expected shape or
+raises ``TypeError``/``ValueError`` naming the argument, what was received, what was
+expected and, where it helps, the offending indices.  Never ``assert`` on user input:
+assertions vanish under ``python -O``.
+"""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+
+__all__ = ["as_float_array", "per_disk", "as_count", "as_positive_float", "indices_where"]
+
+_MAX_LISTED = 10
+
+
+def indices_where(mask: np.ndarray) -> str:
+    """Describe the indices where ``mask`` is true, at most a few of them."""
+    idx = np.flatnonzero(np.asarray(mask).reshape(len(mask), -1).any(axis=1))
+    shown = ", ".join(str(int(i)) for i in idx[:_MAX_LISTED])
+    more = f" and {len(idx) - _MAX_LISTED} more" if len(idx) > _MAX_LISTED else ""
+    return f"[{shown}{more}]"
+
+
+def as_float_array(
+    name: str,
+    value,
+    shape: tuple,
+    *,
+    allow_inf: bool = False,
+) -> np.ndarray:
+    """Convert ``value`` to a C-contiguous float64 array of ``shape``.
+
+    ``shape`` may contain ``None`` for a free length.  NaN is always rejected; infinity
+    only when ``allow_inf`` is false.
+    """
+    if value is None:
+        raise TypeError(f"{name} is required, got None")
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be numeric, got {type(value).__name__} {value!r}")
+    try:
+        arr = np.array(value, dtype=np.float64, order="C", copy=True)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(
+            f"{name} must be an array of real numbers with shape {_fmt(shape)}; "
+            f"could not convert {type(value).__name__}: {exc}"
+        ) from None
+    if np.iscomplexobj(np.asarray(value)):
+        raise TypeError(f"{name} must be real, got complex values")
+    if arr.ndim != len(shape) or any(s is not None and s != a for s, a in zip(shape, arr.shape)):
+        raise ValueError(f"{name} must have shape {_fmt(shape)}, got shape {arr.shape}")
+    bad = np.isnan(arr) if allow_inf else ~np.isfinite(arr)
+    if bad.any():
+        what = "NaN" if allow_inf else "NaN or infinite"
+        where = indices_where(bad) if arr.ndim >= 1 and len(arr) else ""
+        raise ValueError(f"{name} contains {what} values at indices {where}")
+    return arr
+
+
+def per_disk(name: str, value, n: int, *, allow_inf: bool = False) -> np.ndarray:
+    """A per-disk quantity: a scalar broadcast to ``(n,)`` or an array of shape ``(n,)``."""
+    if value is None:
+        raise TypeError(f"{name} is required, got None")
+    if np.ndim(value) == 0:
+        scalar = as_float_array(name, value, (), allow_inf=allow_inf)
+        return np.full(n, float(scalar), dtype=np.float64)
+    return as_float_array(name, value, (n,), allow_inf=allow_inf)
+
+
+def as_count(name: str, value) -> int:
+    """A non-negative integer (a number of collisions, disks, frames...)."""
+    if isinstance(value, bool) or not isinstance(value, (numbers.Integral, np.integer)):
+        if isinstance(value, (float, np.floating)) and float(value).is_integer():
+            value = int(value)
+        else:
+            raise TypeError(f"{name} must be an integer, got {type(value).__name__} {value!r}")
+    value = int(value)
+    if value < 0:
+        raise ValueError(f"{name} must be >= 0, got {value}")
+    return value
+
+
+def as_positive_float(name: str, value, *, allow_zero: bool = False) -> float:
+    """A finite scalar > 0 (or >= 0 with ``allow_zero``)."""
+    if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
+        raise TypeError(f"{name} must be a real number, got {type(value).__name__} {value!r}")
+    value = float(value)
+    if not np.isfinite(value):
+        raise ValueError(f"{name} must be finite, got {value}")
+    if value < 0 or (value == 0 and not allow_zero):
+        bound = ">= 0" if allow_zero else "> 0"
+        raise ValueError(f"{name} must be {bound}, got {value}")
+    return value
+
+
+def _fmt(shape: tuple) -> str:
+    parts = ["N" if s is None else str(s) for s in shape]
+    return "(" + ", ".join(parts) + ("," if len(parts) == 1 else "") + ")"

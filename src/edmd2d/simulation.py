@@ -1,0 +1,499 @@
+"""The :class:`Simulation`: owns the state, validates input, drives the compiled engine."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._engine import grid as _grid
+from ._engine import loop as _loop
+from ._engine import overlap as _overlap
+from ._validate import as_count, as_float_array, indices_where, per_disk
+from .geometry import Box, Wall
+
+__all__ = ["Simulation", "Counts"]
+
+# Relative tolerance for "touching is fine, overlapping is not" in the input checks:
+# lattices built by arithmetic touch to within rounding, and the engine copes with a
+# rounding-sized overlap (an approaching overlapped pair collides at once).
+_OVERLAP_TOL = 1e-9
+# Margin by which a cell exceeds the largest diameter, so that a centre that is a
+# rounding error outside its logical cell is still seen by its neighbours.
+_CELL_MARGIN = 1e-9
+# Events per engine call; between calls Python regains control (Ctrl-C works).
+_CHUNK_EVENTS = 1 << 22
+
+_KIND_NAMES = {_loop.DISK: "disk", _loop.SEGMENT: "wall", _loop.BOX: "box"}
+_BOX_WALL_NAMES = ("x=0", "x=width", "y=0", "y=height")
+
+
+@dataclass(frozen=True)
+class Counts:
+    """Event counts since the simulation was created.
+
+    Attributes
+    ----------
+    collisions : int
+        Disk-disk collisions.
+    wall_collisions : int
+        Collisions of disks with box walls and wall segments (sides and end points).
+    cell_crossings : int
+        Grid bookkeeping events: a disk centre moved into another cell.
+    events : int
+        All processed events: the sum of the three above.
+    stale : int
+        Predictions found invalid when they came due (the partner had changed course)
+        and recomputed; not physical events, not included in ``events``.
+    """
+
+    collisions: int
+    wall_collisions: int
+    cell_crossings: int
+    events: int
+    stale: int
+
+
+class Simulation:
+    """An exact event-driven simulation of hard disks in a rectangular box.
+
+    Disks move on straight lines between collisions.  Every disk-disk and disk-wall
+    contact is found at its exact time from a quadratic equation (no time step), so no
+    collision is missed at any speed or over any interval.
+
+    Parameters
+    ----------
+    positions : array_like, shape (N, 2)
+        Disk centres, inside the box.  On a walled axis each disk must fit between the
+        walls (``r <= x <= width - r``); on a periodic axis ``0 <= x <= width``.
+    velocities : array_like, shape (N, 2)
+        Disk velocities.
+    radii : float or array_like, shape (N,)
+        Radii, > 0.
+    masses : float or array_like, shape (N,), default 1.0
+        Masses, > 0; ``inf`` makes a disk immovable (a fixed peg, or a piston if it
+        moves).  Two immovable disks must never meet, nor may a moving immovable disk
+        reach a wall: that stops the simulation with a ``RuntimeError``.
+    box : Box
+        The container.  A periodic axis must be at least one largest diameter long.
+    walls : iterable of Wall, optional
+        Extra wall segments inside the box.
+    time : float, default 0.0
+        The clock at the given state.
+    cell_size : float, optional
+        Side of the grid cells (advanced).  Must be at least the largest diameter;
+        the default picks about one cell per disk, never below that bound.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For arguments of the wrong type, shape or value, with the indices of the
+        offending disks, overlapping pairs, and disks overlapping a wall.
+
+    Examples
+    --------
+    Two disks approaching head-on touch when their gap of 1 closes at relative speed 2:
+
+    >>> import edmd2d as ed
+    >>> sim = ed.Simulation([[2.0, 5.0], [5.0, 5.0]], [[1.0, 0.0], [-1.0, 0.0]],
+    ...                     radii=1.0, box=ed.Box(10.0, 10.0, periodic=False))
+    >>> sim.advance(collisions=1).time
+    0.5
+    >>> sim.velocities
+    array([[-1.,  0.],
+           [ 1.,  0.]])
+    """
+
+    def __init__(
+        self,
+        positions,
+        velocities,
+        radii,
+        masses=1.0,
+        box: Box | None = None,
+        walls: Iterable[Wall] = (),
+        *,
+        time: float = 0.0,
+        cell_size: float | None = None,
+    ) -> None:
+        if box is None:
+            raise TypeError("box is required: pass box=edmd2d.Box(width, height, periodic=...)")
+        if not isinstance(box, Box):
+            raise TypeError(f"box must be an edmd2d.Box, got {type(box).__name__}")
+        pos = as_float_array("positions", positions, (None, 2))
+        n = len(pos)
+        if n == 0:
+            raise ValueError("positions must hold at least one disk, got shape (0, 2)")
+        vel = as_float_array("velocities", velocities, (n, 2))
+        rad = per_disk("radii", radii, n)
+        if (rad <= 0).any():
+            raise ValueError(f"radii must be > 0; disks {indices_where(rad <= 0)} are not")
+        mass = per_disk("masses", masses, n, allow_inf=True)
+        if (mass <= 0).any():
+            raise ValueError(f"masses must be > 0; disks {indices_where(mass <= 0)} are not")
+        wall_list = _as_walls(walls)
+        t0 = as_float_array("time", time, ())
+        self._box = box
+        self._walls = tuple(wall_list)
+        pos = self._check_in_box(pos, rad)
+        self._check_walls_in_box()
+
+        width, height = box.width, box.height
+        dmax = 2.0 * float(rad.max())
+        for axis, length in (("width", width), ("height", height)):
+            periodic = box.periodic[0 if axis == "width" else 1]
+            if periodic and length < dmax:
+                raise ValueError(
+                    f"box {axis} {length} is smaller than the largest disk diameter {dmax}: "
+                    "on a periodic axis a disk would overlap its own image"
+                )
+        side_min = dmax * (1.0 + _CELL_MARGIN)
+        if cell_size is None:
+            side = max(side_min, math.sqrt(width * height / (2.0 * n)))
+        else:
+            side = float(as_float_array("cell_size", cell_size, ()))
+            if not side >= dmax:
+                raise ValueError(
+                    f"cell_size must be at least the largest diameter {dmax}, got {side}"
+                )
+            side = max(side, side_min)
+        ncx = max(1, int(width // side))
+        ncy = max(1, int(height // side))
+        self._gi = np.array([ncx, ncy, int(box.periodic[0]), int(box.periodic[1])], np.int64)
+        self._gf = np.array([width, height, width / ncx, height / ncy], np.float64)
+
+        self._pos = pos
+        self._vel = vel
+        self._rad = rad
+        self._mass = mass
+        with np.errstate(divide="ignore"):
+            self._invm = np.where(np.isinf(mass), 0.0, 1.0 / mass)
+        self._tloc = np.full(n, float(t0))
+        self._time = float(t0)
+        self._stamp = np.zeros(n, np.int64)
+        self._image = np.zeros((n, 2), np.int64)
+        self._cell = np.empty(n, np.int64)
+        self._head = np.empty(ncx * ncy, np.int64)
+        self._nxt = np.empty(n, np.int64)
+        self._prv = np.empty(n, np.int64)
+        _grid.build_cells(self._pos, self._gi, self._gf, self._cell, self._head,
+                          self._nxt, self._prv)
+        if wall_list:
+            self._wa = np.array([w.start for w in wall_list], np.float64)
+            self._wb = np.array([w.end for w in wall_list], np.float64)
+        else:
+            self._wa = np.zeros((0, 2))
+            self._wb = np.zeros((0, 2))
+        reach = 0.5 * dmax + _CELL_MARGIN * (side + dmax)
+        self._wstart, self._wwall, self._wsx, self._wsy = _grid.bucket_walls(
+            self._wa, self._wb, self._gi, self._gf, reach
+        )
+        self._check_overlaps()
+
+        self._ev_t = np.empty(n, np.float64)
+        self._ev_i = np.zeros((n, 4), np.int64)
+        self._heap = np.empty(n, np.int64)
+        self._where = np.empty(n, np.int64)
+        self._counts = np.zeros(_loop.N_COUNTS, np.int64)
+        self._acc = np.zeros(_loop.N_ACC, np.float64)
+        self._log_t = np.zeros(0)
+        self._log_e = np.zeros((0, 3), np.int64)
+        self._log_n = np.zeros(1, np.int64)
+        self._predict_all()
+
+    # ------------------------------------------------------------------ validation
+    def _check_in_box(self, pos: np.ndarray, rad: np.ndarray) -> np.ndarray:
+        box = self._box
+        for axis, length in enumerate((box.width, box.height)):
+            name = "xy"[axis]
+            coord = pos[:, axis]
+            outside = (coord < 0) | (coord > length)
+            if outside.any():
+                raise ValueError(
+                    f"positions: disks {indices_where(outside)} lie outside the box "
+                    f"(0 <= {name} <= {length})"
+                )
+            if box.periodic[axis]:
+                coord[coord == length] = 0.0
+            else:
+                lo = coord < rad * (1 - _OVERLAP_TOL)
+                hi = coord > length - rad * (1 - _OVERLAP_TOL)
+                if (lo | hi).any():
+                    raise ValueError(
+                        f"positions: disks {indices_where(lo | hi)} overlap the box wall "
+                        f"on the {name} axis (need radius <= {name} <= {length} - radius)"
+                    )
+        return pos
+
+    def _check_walls_in_box(self) -> None:
+        w, h = self._box.width, self._box.height
+        for k, wall in enumerate(self._walls):
+            for pt in (wall.start, wall.end):
+                if not (0 <= pt[0] <= w and 0 <= pt[1] <= h):
+                    raise ValueError(
+                        f"walls[{k}] has an end point {pt} outside the box [0, {w}] x [0, {h}]"
+                    )
+
+    def _check_overlaps(self) -> None:
+        i, j, dist = _overlap.first_disk_overlap(
+            self._pos, self._rad, self._gi, self._gf, self._cell, self._head, self._nxt,
+            _OVERLAP_TOL,
+        )
+        if i >= 0:
+            what = "its own periodic image" if i == j else f"disk {j}"
+            raise ValueError(
+                f"positions: disk {i} overlaps {what} (centre distance {dist:.6g} < "
+                f"sum of radii {self._rad[i] + self._rad[j]:.6g})"
+            )
+        i, w, dist = _overlap.first_wall_overlap(
+            self._pos, self._rad, self._gf, self._cell, self._wa, self._wb,
+            self._wstart, self._wwall, self._wsx, self._wsy, _OVERLAP_TOL,
+        )
+        if i >= 0:
+            raise ValueError(
+                f"positions: disk {i} overlaps walls[{w}] (distance {dist:.6g} < "
+                f"radius {self._rad[i]:.6g})"
+            )
+
+    # ------------------------------------------------------------------ engine calls
+    def _grid_args(self):
+        return (self._gi, self._gf, self._cell, self._head, self._nxt)
+
+    def _wall_args(self):
+        return (self._wa, self._wb, self._wstart, self._wwall, self._wsx, self._wsy)
+
+    def _predict_all(self) -> None:
+        _loop.predict_all(
+            self._time, self._pos, self._vel, self._tloc, self._rad, self._stamp,
+            *self._grid_args(), *self._wall_args(),
+            self._ev_t, self._ev_i, self._heap, self._where,
+        )
+
+    def advance(self, until: float | None = None, collisions: int | None = None) -> Simulation:
+        """Run the simulation forward, event by event, in time order.
+
+        Parameters
+        ----------
+        until : float, optional
+            Process every event up to and including this time, then let all disks
+            drift to it (seed section 3); afterwards ``time == until``.  Must not be
+            earlier than :attr:`time`.
+        collisions : int, optional
+            Stop right after this many further disk-disk collisions; :attr:`time` is
+            then the time of the last one.  ``0`` does nothing.
+
+        If both are given the run stops at whichever comes first.
+
+        Returns
+        -------
+        Simulation
+            ``self``, so that calls can be chained.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For missing or invalid arguments; the simulation is left unchanged.
+        RuntimeError
+            If two immovable disks meet, or a moving immovable disk reaches a wall, or
+            ``collisions`` is requested when no further event can ever happen.  The
+            simulation then stands at the last event processed before the problem.
+        """
+        if until is None and collisions is None:
+            raise TypeError("advance() needs until= (a time) or collisions= (a count)")
+        t_end = math.inf
+        if until is not None:
+            t_end = float(as_float_array("until", until, ()))
+            if t_end < self._time:
+                raise ValueError(
+                    f"until={t_end} is earlier than the current time {self._time}; "
+                    "simulations only run forward"
+                )
+        max_coll = np.iinfo(np.int64).max
+        if collisions is not None:
+            max_coll = as_count("collisions", collisions)
+            if max_coll == 0:
+                return self
+
+        remaining = max_coll
+        out = np.array([self._time])
+        info = np.full(2, -1, np.int64)
+        while True:
+            before = int(self._counts[_loop.C_COLLISIONS])
+            status = _loop.run(
+                t_end, remaining, _CHUNK_EVENTS,
+                self._pos, self._vel, self._tloc, self._rad, self._invm, self._stamp,
+                self._image, *self._grid_args(), self._prv, *self._wall_args(),
+                self._ev_t, self._ev_i, self._heap, self._where,
+                self._counts, self._acc, out, info, self._log_t, self._log_e, self._log_n,
+            )
+            self._time = float(out[0])
+            remaining -= int(self._counts[_loop.C_COLLISIONS]) - before
+            if status != _loop.REACHED_EVENT_LIMIT:
+                break
+        if status in (_loop.REACHED_TIME, _loop.NO_EVENTS) and until is not None:
+            self._time = t_end
+            return self
+        if status == _loop.REACHED_COLLISIONS:
+            return self
+        if status == _loop.NO_EVENTS:
+            raise RuntimeError(
+                f"no further event can ever happen (t={self._time}): "
+                f"{remaining} of the {max_coll} requested collisions cannot occur"
+            )
+        i, j = int(info[0]), int(info[1])
+        t_bad = float(self._ev_t[i])
+        if status == _loop.ERR_IMMOVABLE_PAIR:
+            raise RuntimeError(
+                f"immovable disks {i} and {j} (mass=inf) meet at t={t_bad}: two immovable "
+                f"bodies cannot collide. The simulation stopped at t={self._time}."
+            )
+        if status == _loop.ERR_IMMOVABLE_WALL:
+            where = f"walls[{j}]" if j >= 0 else f"the box wall at {_BOX_WALL_NAMES[-1 - j]}"
+            raise RuntimeError(
+                f"immovable disk {i} (mass=inf) reaches {where} at t={t_bad}: an immovable "
+                f"disk cannot bounce. The simulation stopped at t={self._time}."
+            )
+        raise RuntimeError(f"internal error: engine returned status {status}")  # pragma: no cover
+
+    # ------------------------------------------------------------------ state
+    def __len__(self) -> int:
+        return len(self._pos)
+
+    def __repr__(self) -> str:
+        return (
+            f"Simulation(n={len(self)}, time={self._time:.6g}, box={self._box!r}, "
+            f"walls={len(self._walls)}, collisions={int(self._counts[_loop.C_COLLISIONS])})"
+        )
+
+    @property
+    def n(self) -> int:
+        """Number of disks."""
+        return len(self._pos)
+
+    @property
+    def time(self) -> float:
+        """The simulation clock."""
+        return self._time
+
+    @property
+    def positions(self) -> np.ndarray:
+        """Disk centres at :attr:`time`, shape (N, 2), a copy (wrapped into the box)."""
+        out = np.empty_like(self._pos)
+        _loop.synchronized_positions(self._time, self._pos, self._vel, self._tloc,
+                                     self._gi, self._gf, out)
+        return out
+
+    @property
+    def unwrapped_positions(self) -> np.ndarray:
+        """Disk centres at :attr:`time` with periodic wraps undone, shape (N, 2).
+
+        Differences of these between two times are true displacements (for diffusion
+        studies); on walled axes they equal :attr:`positions`.
+        """
+        dt = (self._time - self._tloc)[:, None]
+        return self._pos + dt * self._vel + self._image * self._box.size
+
+    @property
+    def velocities(self) -> np.ndarray:
+        """Disk velocities, shape (N, 2), a copy."""
+        return self._vel.copy()
+
+    @property
+    def radii(self) -> np.ndarray:
+        """Disk radii, shape (N,), a copy."""
+        return self._rad.copy()
+
+    @property
+    def masses(self) -> np.ndarray:
+        """Disk masses, shape (N,), a copy (``inf`` for immovable disks)."""
+        return self._mass.copy()
+
+    @property
+    def box(self) -> Box:
+        """The container."""
+        return self._box
+
+    @property
+    def walls(self) -> tuple[Wall, ...]:
+        """The wall segments."""
+        return self._walls
+
+    @property
+    def counts(self) -> Counts:
+        """Event counts since creation (see :class:`Counts`)."""
+        c = self._counts
+        coll, wall, cross = (int(c[_loop.C_COLLISIONS]), int(c[_loop.C_WALL]),
+                             int(c[_loop.C_CROSSINGS]))
+        return Counts(coll, wall, cross, coll + wall + cross, int(c[_loop.C_STALE]))
+
+    def kinetic_energy(self) -> float:
+        """Total kinetic energy of the movable disks, ``sum m v^2 / 2``."""
+        movable = self._invm > 0
+        v2 = np.einsum("ij,ij->i", self._vel[movable], self._vel[movable])
+        return float(0.5 * np.dot(self._mass[movable], v2))
+
+    def momentum(self) -> np.ndarray:
+        """Total momentum of the movable disks, shape (2,)."""
+        movable = self._invm > 0
+        return self._mass[movable] @ self._vel[movable]
+
+    def set_velocities(self, velocities) -> None:
+        """Replace all velocities at the current time (e.g. to rescale the temperature).
+
+        All predicted events are recomputed.  Raises like the constructor on bad input.
+        """
+        vel = as_float_array("velocities", velocities, (len(self), 2))
+        self._sync_all()
+        self._vel[:] = vel
+        self._stamp += 1
+        self._predict_all()
+
+    def _sync_all(self) -> None:
+        """Move every stored position to the current time (local clocks all equal)."""
+        dt = (self._time - self._tloc)[:, None]
+        self._pos += dt * self._vel
+        self._tloc[:] = self._time
+
+    # ------------------------------------------------------------------ hooks
+    def _accumulators(self) -> dict:
+        """Raw sums since creation: the collision virial ``sum J |r_ij|`` and impulses."""
+        a = self._acc
+        return {
+            "virial": float(a[_loop.A_VIRIAL]),
+            "box_impulse": a[_loop.A_BOX:_loop.A_BOX + 4].copy(),
+            "segment_impulse": float(a[_loop.A_SEGMENTS]),
+        }
+
+    def _record_events(self, capacity: int) -> None:
+        """Start recording disk and wall events (not cell crossings), up to ``capacity``."""
+        capacity = as_count("capacity", capacity)
+        self._log_t = np.zeros(capacity)
+        self._log_e = np.zeros((capacity, 3), np.int64)
+        self._log_n = np.zeros(1, np.int64)
+
+    def _recorded_events(self) -> list[tuple[float, str, int, int]]:
+        """Recorded events as ``(time, kind, disk, partner)``; kind is "disk", "wall"
+        (partner: wall index) or "box" (partner: 0..3 for x=0, x=width, y=0, y=height)."""
+        k = min(int(self._log_n[0]), len(self._log_t))
+        return [
+            (float(self._log_t[m]), _KIND_NAMES[int(self._log_e[m, 0])],
+             int(self._log_e[m, 1]), int(self._log_e[m, 2]))
+            for m in range(k)
+        ]
+
+
+def _as_walls(walls) -> list[Wall]:
+    if walls is None:
+        return []
+    if isinstance(walls, Wall):
+        return [walls]
+    try:
+        items = list(walls)
+    except TypeError:
+        raise TypeError(f"walls must be an iterable of edmd2d.Wall, got {walls!r}") from None
+    for k, w in enumerate(items):
+        if not isinstance(w, Wall):
+            raise TypeError(f"walls[{k}] must be an edmd2d.Wall, got {type(w).__name__}")
+    return items

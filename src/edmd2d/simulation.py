@@ -456,6 +456,15 @@ class Simulation:
         self._pos += dt * self._vel
         self._tloc[:] = self._time
 
+    def measure(self, duration: float, **kwargs):
+        """Run for ``duration`` and return the measurements over that window.
+
+        See :func:`edmd2d.measure.measure` for the quantities and options.
+        """
+        from .measure import measure
+
+        return measure(self, duration, **kwargs)
+
     # ------------------------------------------------------------------ hooks
     def _accumulators(self) -> dict:
         """Raw sums since creation: the collision virial ``sum J |r_ij|`` and impulses."""

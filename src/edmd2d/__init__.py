@@ -7,8 +7,9 @@
 1
 """
 
+from .builders import lattice_packing_limit, make_gas
 from .geometry import Box, Wall
 from .simulation import Counts, Simulation
 
-__all__ = ["Box", "Wall", "Simulation", "Counts"]
+__all__ = ["Box", "Wall", "Simulation", "Counts", "make_gas", "lattice_packing_limit"]
 __version__ = "0.1.0"

@@ -80,9 +80,11 @@ def make_gas(
     >>> import edmd2d as ed
     >>> sim = ed.make_gas(400, 0.3, seed=1)
     >>> len(sim), round(sim.box.width, 3)
-    (400, 18.091)
-    >>> float(sum(3.141592653589793 * sim.radii**2) / sim.box.area)
+    (400, 32.36)
+    >>> round(float(sum(3.141592653589793 * sim.radii**2) / sim.box.area), 12)
     0.3
+    >>> round(sim.kinetic_energy() / (2 * 400 - 2), 12)  # E / (2N - 2) = k T / 2
+    0.5
     """
     n = as_count("n", n)
     if n < 1:
@@ -126,8 +128,9 @@ def lattice_packing_limit(n: int, *, radius=0.5, radii=None, aspect=1.0, periodi
 
     Examples
     --------
-    >>> round(lattice_packing_limit(100), 3)
-    0.907
+    A square periodic box takes a lattice of 1000 equal disks up to
+    >>> round(lattice_packing_limit(1000), 3)
+    0.873
     """
     n = as_count("n", n)
     rad = per_disk("radii", radii, n) if radii is not None else np.full(n, float(radius))

@@ -102,11 +102,23 @@ class ReferenceSimulation:
         self.collisions = 0
         self.wall_collisions = 0
 
-    # -- the images of space: shifts to try on periodic axes
+    # -- the images of space: shifts to try on periodic axes.  Within one look-ahead
+    # window (see _horizon) no disk moves more than a quarter of a periodic length, so
+    # a pair's relative position changes by at most half a length and every image it
+    # can touch is within two lengths of the stored (wrapped) positions.
     def _shifts(self):
-        xs = (-1, 0, 1) if self.box.periodic[0] else (0,)
-        ys = (-1, 0, 1) if self.box.periodic[1] else (0,)
+        xs = (-2, -1, 0, 1, 2) if self.box.periodic[0] else (0,)
+        ys = (-2, -1, 0, 1, 2) if self.box.periodic[1] else (0,)
         return [(sx * self.box.width, sy * self.box.height) for sx in xs for sy in ys]
+
+    def _horizon(self):
+        """How far ahead next_event may look on a periodic box (inf if walled)."""
+        lengths = [length for axis, length in enumerate((self.box.width, self.box.height))
+                   if self.box.periodic[axis]]
+        vmax = max((math.hypot(*v) for v in self.v), default=0.0)
+        if not lengths or vmax == 0.0:
+            return INF
+        return min(lengths) / (4.0 * vmax)
 
     def next_event(self):
         """The earliest event from now: (dt, kind, i, partner, detail)."""
@@ -204,6 +216,12 @@ class ReferenceSimulation:
         done = 0
         while done < todo:
             dt, kind, i, partner, detail = self.next_event()
+            horizon = self._horizon()
+            if dt > horizon and self.time + horizon < target:
+                # Nothing within the look-ahead window: move there and look again.
+                self._drift(horizon)
+                self._wrap()
+                continue
             if self.time + dt > target or dt == INF:
                 break
             self._drift(dt)

@@ -164,21 +164,26 @@ class Simulation:
         self._gi = np.array([ncx, ncy, int(box.periodic[0]), int(box.periodic[1])], np.int64)
         self._gf = np.array([width, height, width / ncx, height / ncy], np.float64)
 
-        self._pos = pos
-        self._vel = vel
-        self._rad = rad
-        self._mass = mass
+        # Per-disk state, one 64-byte row each (see _engine/loop.py for the columns).
+        state = np.empty((n, _loop.N_STATE), np.float64)
+        state[:, _loop.X:_loop.Y + 1] = pos
+        state[:, _loop.VX:_loop.VY + 1] = vel
+        state[:, _loop.T] = float(t0)
+        state[:, _loop.R] = rad
         with np.errstate(divide="ignore"):
-            self._invm = np.where(np.isinf(mass), 0.0, 1.0 / mass)
-        self._tloc = np.full(n, float(t0))
+            state[:, _loop.INVM] = np.where(np.isinf(mass), 0.0, 1.0 / mass)
+        state[:, _loop.TC] = np.inf
+        self._S = state
+        self._mass = mass
         self._time = float(t0)
-        self._stamp = np.zeros(n, np.int64)
-        self._image = np.zeros((n, 2), np.int64)
-        self._cell = np.empty(n, np.int64)
-        self._head = np.empty(ncx * ncy, np.int64)
-        self._nxt = np.empty(n, np.int64)
-        self._prv = np.empty(n, np.int64)
-        _grid.build_cells(self._pos, self._gi, self._gf, self._cell, self._head,
+        idx = np.int32
+        self._stamp = np.zeros(n, idx)
+        self._image = np.zeros((n, 2), idx)
+        self._cell = np.empty(n, idx)
+        self._head = np.empty(ncx * ncy, idx)
+        self._nxt = np.empty(n, idx)
+        self._prv = np.empty(n, idx)
+        _grid.build_cells(pos, self._gi, self._gf, self._cell, self._head,
                           self._nxt, self._prv)
         if wall_list:
             self._wa = np.array([w.start for w in wall_list], np.float64)
@@ -190,12 +195,13 @@ class Simulation:
         self._wstart, self._wwall, self._wsx, self._wsy = _grid.bucket_walls(
             self._wa, self._wb, self._gi, self._gf, reach
         )
-        self._check_overlaps()
+        self._check_overlaps(pos, rad)
 
-        self._ev_t = np.empty(n, np.float64)
-        self._ev_i = np.zeros((n, 4), np.int64)
-        self._heap = np.empty(n, np.int64)
-        self._where = np.empty(n, np.int64)
+        self._ev_i = np.zeros((n, 4), idx)
+        self._nc_i = np.zeros((n, 4), idx)
+        self._hkey = np.empty(n, np.float64)
+        self._hval = np.empty(n, idx)
+        self._where = np.empty(n, idx)
         self._counts = np.zeros(_loop.N_COUNTS, np.int64)
         self._acc = np.zeros(_loop.N_ACC, np.float64)
         self._log_t = np.zeros(0)
@@ -236,25 +242,25 @@ class Simulation:
                         f"walls[{k}] has an end point {pt} outside the box [0, {w}] x [0, {h}]"
                     )
 
-    def _check_overlaps(self) -> None:
+    def _check_overlaps(self, pos: np.ndarray, rad: np.ndarray) -> None:
         i, j, dist = _overlap.first_disk_overlap(
-            self._pos, self._rad, self._gi, self._gf, self._cell, self._head, self._nxt,
+            pos, rad, self._gi, self._gf, self._cell, self._head, self._nxt,
             _OVERLAP_TOL,
         )
         if i >= 0:
             what = "its own periodic image" if i == j else f"disk {j}"
             raise ValueError(
                 f"positions: disk {i} overlaps {what} (centre distance {dist:.6g} < "
-                f"sum of radii {self._rad[i] + self._rad[j]:.6g})"
+                f"sum of radii {rad[i] + rad[j]:.6g})"
             )
         i, w, dist = _overlap.first_wall_overlap(
-            self._pos, self._rad, self._gf, self._cell, self._wa, self._wb,
+            pos, rad, self._gf, self._cell, self._wa, self._wb,
             self._wstart, self._wwall, self._wsx, self._wsy, _OVERLAP_TOL,
         )
         if i >= 0:
             raise ValueError(
                 f"positions: disk {i} overlaps walls[{w}] (distance {dist:.6g} < "
-                f"radius {self._rad[i]:.6g})"
+                f"radius {rad[i]:.6g})"
             )
 
     # ------------------------------------------------------------------ engine calls
@@ -266,9 +272,8 @@ class Simulation:
 
     def _predict_all(self) -> None:
         _loop.predict_all(
-            self._time, self._pos, self._vel, self._tloc, self._rad, self._stamp,
-            *self._grid_args(), *self._wall_args(),
-            self._ev_t, self._ev_i, self._heap, self._where,
+            self._time, self._S, self._stamp, *self._grid_args(), *self._wall_args(),
+            self._nc_i, self._ev_i, self._hkey, self._hval, self._where,
         )
 
     def advance(self, until: float | None = None, collisions: int | None = None) -> Simulation:
@@ -323,9 +328,9 @@ class Simulation:
             before = int(self._counts[_loop.C_COLLISIONS])
             status = _loop.run(
                 t_end, remaining, _CHUNK_EVENTS,
-                self._pos, self._vel, self._tloc, self._rad, self._invm, self._stamp,
-                self._image, *self._grid_args(), self._prv, *self._wall_args(),
-                self._ev_t, self._ev_i, self._heap, self._where,
+                self._S, self._stamp, self._image, *self._grid_args(), self._prv,
+                *self._wall_args(), self._nc_i, self._ev_i, self._hkey, self._hval,
+                self._where,
                 self._counts, self._acc, out, info, self._log_t, self._log_e, self._log_n,
             )
             self._time = float(out[0])
@@ -343,7 +348,7 @@ class Simulation:
                 f"{remaining} of the {max_coll} requested collisions cannot occur"
             )
         i, j = int(info[0]), int(info[1])
-        t_bad = float(self._ev_t[i])
+        t_bad = float(self._hkey[self._where[i]])
         if status == _loop.ERR_IMMOVABLE_PAIR:
             raise RuntimeError(
                 f"immovable disks {i} and {j} (mass=inf) meet at t={t_bad}: two immovable "
@@ -359,7 +364,7 @@ class Simulation:
 
     # ------------------------------------------------------------------ state
     def __len__(self) -> int:
-        return len(self._pos)
+        return len(self._S)
 
     def __repr__(self) -> str:
         return (
@@ -370,7 +375,7 @@ class Simulation:
     @property
     def n(self) -> int:
         """Number of disks."""
-        return len(self._pos)
+        return len(self._S)
 
     @property
     def time(self) -> float:
@@ -380,9 +385,8 @@ class Simulation:
     @property
     def positions(self) -> np.ndarray:
         """Disk centres at :attr:`time`, shape (N, 2), a copy (wrapped into the box)."""
-        out = np.empty_like(self._pos)
-        _loop.synchronized_positions(self._time, self._pos, self._vel, self._tloc,
-                                     self._gi, self._gf, out)
+        out = np.empty((len(self._S), 2))
+        _loop.synchronized_positions(self._time, self._S, self._gi, self._gf, out)
         return out
 
     @property
@@ -392,18 +396,19 @@ class Simulation:
         Differences of these between two times are true displacements (for diffusion
         studies); on walled axes they equal :attr:`positions`.
         """
-        dt = (self._time - self._tloc)[:, None]
-        return self._pos + dt * self._vel + self._image * self._box.size
+        S = self._S
+        dt = (self._time - S[:, _loop.T])[:, None]
+        return S[:, 0:2] + dt * S[:, 2:4] + self._image * self._box.size
 
     @property
     def velocities(self) -> np.ndarray:
         """Disk velocities, shape (N, 2), a copy."""
-        return self._vel.copy()
+        return self._S[:, _loop.VX:_loop.VY + 1].copy()
 
     @property
     def radii(self) -> np.ndarray:
         """Disk radii, shape (N,), a copy."""
-        return self._rad.copy()
+        return self._S[:, _loop.R].copy()
 
     @property
     def masses(self) -> np.ndarray:
@@ -430,14 +435,14 @@ class Simulation:
 
     def kinetic_energy(self) -> float:
         """Total kinetic energy of the movable disks, ``sum m v^2 / 2``."""
-        movable = self._invm > 0
-        v2 = np.einsum("ij,ij->i", self._vel[movable], self._vel[movable])
-        return float(0.5 * np.dot(self._mass[movable], v2))
+        movable = self._S[:, _loop.INVM] > 0
+        vel = self._S[movable, _loop.VX:_loop.VY + 1]
+        return float(0.5 * np.dot(self._mass[movable], np.einsum("ij,ij->i", vel, vel)))
 
     def momentum(self) -> np.ndarray:
         """Total momentum of the movable disks, shape (2,)."""
-        movable = self._invm > 0
-        return self._mass[movable] @ self._vel[movable]
+        movable = self._S[:, _loop.INVM] > 0
+        return self._mass[movable] @ self._S[movable, _loop.VX:_loop.VY + 1]
 
     def set_velocities(self, velocities) -> None:
         """Replace all velocities at the current time (e.g. to rescale the temperature).
@@ -446,15 +451,15 @@ class Simulation:
         """
         vel = as_float_array("velocities", velocities, (len(self), 2))
         self._sync_all()
-        self._vel[:] = vel
+        self._S[:, _loop.VX:_loop.VY + 1] = vel
         self._stamp += 1
         self._predict_all()
 
     def _sync_all(self) -> None:
         """Move every stored position to the current time (local clocks all equal)."""
-        dt = (self._time - self._tloc)[:, None]
-        self._pos += dt * self._vel
-        self._tloc[:] = self._time
+        S = self._S
+        S[:, 0:2] += (self._time - S[:, _loop.T])[:, None] * S[:, 2:4]
+        S[:, _loop.T] = self._time
 
     def measure(self, duration: float, **kwargs):
         """Run for ``duration`` and return the measurements over that window.

@@ -1,28 +1,43 @@
 """The event loop (seed section 3), one scheduled event per disk.
 
-Each disk ``i`` keeps its own earliest predicted event in ``ev_t[i]`` and
-``ev_i[i] = (kind, partner, aux, partner_stamp)``; the disks sit in an indexed heap keyed
-by that time.  ``stamp[i]`` (the invalidation counter) grows whenever disk ``i``'s
-trajectory changes (a collision) or its stored coordinates jump (a periodic wrap).
+State layout (struct of arrays, one row per disk):
 
-Why one event per disk is enough: the event of ``i`` is the minimum over all of ``i``'s
-candidate events.  If a partner ``j`` changes course, ``j`` itself is re-predicted against
-all its neighbours, ``i`` included, so any new ``i``-``j`` contact is held by ``j``.  The
-other candidates of ``i`` are all later than ``i``'s stale event, so when a stale event
-reaches the top (partner stamp changed) it suffices to re-predict ``i`` then.
+``S[i] = (x, y, vx, vy, t_local, radius, 1/mass, t_candidate)`` (float64, 64 bytes: one
+cache line), ``stamp[i]`` (int32 invalidation counter), ``ev_i[i] = (kind, partner, aux,
+partner_stamp)`` (int32) the scheduled event, whose time sits in the queue, and
+``nc_i[i]`` (with time ``S[i, 7]``) the best candidate that is *not* a cell crossing.
 
-Positions are "delayed states": ``pos[i]`` is valid at ``tloc[i]``; only the disks of an
-event are moved to its time.
+Why one event per disk is enough: a disk's event is the minimum over its candidates.
+When a partner ``j`` changes course it is re-predicted against all its neighbours, so
+any new contact with ``j`` is held by ``j``; the other candidates of ``i`` are all later
+than ``i``'s stale event, so re-predicting ``i`` when that stale event comes due is
+enough.  ``stamp[i]`` grows whenever ``i``'s trajectory changes (a collision) or its
+stored coordinates jump by a box length (a periodic wrap).
+
+Why a cell crossing only needs the newly exposed cells: the kept candidate ``nc`` is the
+earliest contact with everything in the old neighbourhood (still exact if its partner's
+stamp is unchanged); disks that entered the old neighbourhood since then predicted
+against ``i`` themselves; so only the row of cells that comes into range must be scanned.
+A wrap, or a stale ``nc``, falls back to a full scan.
+
+Positions are "delayed states": ``S[i, 0:2]`` is valid at ``S[i, 4]``; only the disks of
+an event are moved to its time.
 """
 
 from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .._jit import njit
 from . import queue
 from .grid import insert, neighbour, remove
 from .predict import INF, box_wall_time, exit_time, pair_time, segment_time
+
+# Columns of S
+X, Y, VX, VY, T, R, INVM, TC = 0, 1, 2, 3, 4, 5, 6, 7
+N_STATE = 8
 
 # Event kinds (ev_i[:, 0])
 NONE = 0
@@ -54,139 +69,218 @@ ERR_IMMOVABLE_PAIR = 10
 ERR_IMMOVABLE_WALL = 11
 
 
-@njit
-def predict_disk(i, t, pos, vel, tloc, rad, stamp, gi, gf, cell, head, nxt,
-                 wa, wb, wstart, wwall, wsx, wsy, ev_t, ev_i):
-    """Find the earliest event of disk ``i`` from time ``t`` on and store it."""
+@njit(inline="always")
+def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
+                S, stamp, gi, gf, head, nxt, best, partner, aux, pst):
+    """Earliest contact of disk ``i`` (at ``x, y`` at time ``t``) with the disks in the
+    cells at offsets ``[ox0, ox1] x [oy0, oy1]`` from ``(cx, cy)``, if before ``best``
+    (a time interval from ``t``)."""
     ncx = gi[0]
-    ncy = gi[1]
-    perx = gi[2] != 0
-    pery = gi[3] != 0
-    width = gf[0]
-    height = gf[1]
-    lx = gf[2]
-    ly = gf[3]
-
-    dt0 = t - tloc[i]
-    vx = vel[i, 0]
-    vy = vel[i, 1]
-    x = pos[i, 0] + dt0 * vx
-    y = pos[i, 1] + dt0 * vy
-    r = rad[i]
-    c = cell[i]
-    cx = c % ncx
-    cy = c // ncx
-
-    # Leaving the cell.
-    best, direction = exit_time(x, vx, cx, lx, ncx, perx)
-    kind = CROSS
-    partner = -1
-    aux = 0 if direction > 0 else 1
-    pst = 0
-    dty, diry = exit_time(y, vy, cy, ly, ncy, pery)
-    if dty < best:
-        best = dty
-        aux = 2 if diry > 0 else 3
-    if best == INF:
-        kind = NONE
-
-    # The box walls of non-periodic axes.
-    if not perx:
-        dtw, side = box_wall_time(x, vx, r, width)
-        if dtw < best:
-            best = dtw
-            kind = BOX
-            aux = side
-            partner = -1
-    if not pery:
-        dtw, side = box_wall_time(y, vy, r, height)
-        if dtw < best:
-            best = dtw
-            kind = BOX
-            aux = 2 + side
-            partner = -1
-
-    # Disks in the 3x3 neighbourhood (each (cell, image shift) visited once).
-    for ox in range(-1, 2):
-        nxc, sx = neighbour(cx, ox, ncx, perx)
+    for ox in range(ox0, ox1 + 1):
+        nxc, sx = neighbour(cx, ox, ncx, gi[2] != 0)
         if nxc < 0:
             continue
-        for oy in range(-1, 2):
-            nyc, sy = neighbour(cy, oy, ncy, pery)
+        for oy in range(oy0, oy1 + 1):
+            nyc, sy = neighbour(cy, oy, gi[1], gi[3] != 0)
             if nyc < 0:
                 continue
             j = head[nxc + ncx * nyc]
             while j >= 0:
                 if j != i:
-                    dtj = t - tloc[j]
-                    vjx = vel[j, 0]
-                    vjy = vel[j, 1]
-                    dx = x - (pos[j, 0] + dtj * vjx + sx * width)
-                    dy = y - (pos[j, 1] + dtj * vjy + sy * height)
-                    dtc = pair_time(dx, dy, vx - vjx, vy - vjy, r + rad[j])
+                    dtj = t - S[j, T]
+                    vjx = S[j, VX]
+                    vjy = S[j, VY]
+                    dx = x - (S[j, X] + dtj * vjx + sx * gf[0])
+                    dy = y - (S[j, Y] + dtj * vjy + sy * gf[1])
+                    dtc = pair_time(dx, dy, vx - vjx, vy - vjy, r + S[j, R])
                     if dtc < best:
                         best = dtc
-                        kind = DISK
                         partner = j
                         aux = (sx + 1) * 3 + (sy + 1)
                         pst = stamp[j]
                 j = nxt[j]
+    return best, partner, aux, pst
 
-    # Wall segments (and their periodic images) near this cell.
+
+@njit(inline="always")
+def _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy, best, partner, aux):
+    """Earliest contact with the wall segments listed for cell ``c``, if before ``best``."""
     for k in range(wstart[c], wstart[c + 1]):
         w = wwall[k]
-        shx = wsx[k] * width
-        shy = wsy[k] * height
+        shx = wsx[k] * gf[0]
+        shy = wsy[k] * gf[1]
         dtw, part = segment_time(x, y, vx, vy, r,
                                  wa[w, 0] + shx, wa[w, 1] + shy,
                                  wb[w, 0] + shx, wb[w, 1] + shy)
         if dtw < best:
             best = dtw
-            kind = SEGMENT
             partner = w
             aux = part + 3 * ((wsx[k] + 1) * 3 + (wsy[k] + 1))
+    return best, partner, aux
 
-    ev_t[i] = t + best
-    ev_i[i, 0] = kind
-    ev_i[i, 1] = partner
+
+@njit(inline="always")
+def _schedule(i, t, x, y, vx, vy, c, S, gi, gf, nc_i, ev_i):
+    """Schedule for disk ``i`` the earlier of its kept candidate and leaving its cell;
+    returns the event time."""
+    ncx = gi[0]
+    cx = c % ncx
+    cy = c // ncx
+    dtx, dirx = exit_time(x, vx, cx, gf[2], ncx, gi[2] != 0)
+    dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
+    if dty < dtx:
+        dtx = dty
+        aux = 2 if diry > 0 else 3
+    else:
+        aux = 0 if dirx > 0 else 1
+    t_cross = t + dtx
+    if S[i, TC] <= t_cross:
+        ev_i[i, 0] = nc_i[i, 0]
+        ev_i[i, 1] = nc_i[i, 1]
+        ev_i[i, 2] = nc_i[i, 2]
+        ev_i[i, 3] = nc_i[i, 3]
+        return S[i, TC]
+    ev_i[i, 0] = CROSS if dtx < INF else NONE
+    ev_i[i, 1] = -1
     ev_i[i, 2] = aux
-    ev_i[i, 3] = pst
+    ev_i[i, 3] = 0
+    return t_cross
 
 
 @njit
-def predict_all(t, pos, vel, tloc, rad, stamp, gi, gf, cell, head, nxt,
-                wa, wb, wstart, wwall, wsx, wsy, ev_t, ev_i, heap, where):
+def predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
+                 wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i):
+    """Full prediction of disk ``i`` from time ``t``: all 9 neighbour cells, its cell's
+    walls and the box walls.  Keeps the best non-crossing candidate and schedules."""
+    dt0 = t - S[i, T]
+    vx = S[i, VX]
+    vy = S[i, VY]
+    x = S[i, X] + dt0 * vx
+    y = S[i, Y] + dt0 * vy
+    r = S[i, R]
+    c = cell[i]
+    ncx = gi[0]
+    cx = c % ncx
+    cy = c // ncx
+
+    best = INF
+    kind = NONE
+    partner = -1
+    aux = 0
+    if gi[2] == 0:
+        dtw, side = box_wall_time(x, vx, r, gf[0])
+        if dtw < best:
+            best = dtw
+            kind = BOX
+            aux = side
+    if gi[3] == 0:
+        dtw, side = box_wall_time(y, vy, r, gf[1])
+        if dtw < best:
+            best = dtw
+            kind = BOX
+            aux = 2 + side
+    bd, pd, ad, pst = _scan_disks(i, t, x, y, vx, vy, r, cx, cy, -1, 1, -1, 1,
+                                  S, stamp, gi, gf, head, nxt, best, -1, 0, 0)
+    if bd < best:
+        best = bd
+        kind = DISK
+        partner = pd
+        aux = ad
+    bw, pw, aw = _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy,
+                             best, -1, 0)
+    if bw < best:
+        best = bw
+        kind = SEGMENT
+        partner = pw
+        aux = aw
+    S[i, TC] = t + best
+    nc_i[i, 0] = kind
+    nc_i[i, 1] = partner
+    nc_i[i, 2] = aux
+    nc_i[i, 3] = pst if kind == DISK else 0
+    return _schedule(i, t, x, y, vx, vy, c, S, gi, gf, nc_i, ev_i)
+
+
+@njit
+def predict_after_crossing(i, t, direction, S, stamp, gi, gf, cell, head, nxt,
+                           wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i):
+    """Disk ``i`` (at time ``t``, already in its new cell, not wrapped) crossed in
+    ``direction`` (0:+x 1:-x 2:+y 3:-y): scan only the newly exposed row of cells."""
+    if nc_i[i, 0] == DISK and stamp[nc_i[i, 1]] != nc_i[i, 3]:
+        return predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
+                            wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+    vx = S[i, VX]
+    vy = S[i, VY]
+    x = S[i, X]  # advanced to t by the caller
+    y = S[i, Y]
+    r = S[i, R]
+    c = cell[i]
+    ncx = gi[0]
+    cx = c % ncx
+    cy = c // ncx
+    if direction == 0:
+        ox0, ox1, oy0, oy1 = 1, 1, -1, 1
+    elif direction == 1:
+        ox0, ox1, oy0, oy1 = -1, -1, -1, 1
+    elif direction == 2:
+        ox0, ox1, oy0, oy1 = -1, 1, 1, 1
+    else:
+        ox0, ox1, oy0, oy1 = -1, 1, -1, -1
+    best = S[i, TC] - t
+    bd, pd, ad, pst = _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
+                                  S, stamp, gi, gf, head, nxt, best, -1, 0, 0)
+    if bd < best:
+        best = bd
+        S[i, TC] = t + bd
+        nc_i[i, 0] = DISK
+        nc_i[i, 1] = pd
+        nc_i[i, 2] = ad
+        nc_i[i, 3] = pst
+    bw, pw, aw = _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy,
+                             best, -1, 0)
+    if bw < best:
+        S[i, TC] = t + bw
+        nc_i[i, 0] = SEGMENT
+        nc_i[i, 1] = pw
+        nc_i[i, 2] = aw
+        nc_i[i, 3] = 0
+    return _schedule(i, t, x, y, vx, vy, c, S, gi, gf, nc_i, ev_i)
+
+
+@njit
+def predict_all(t, S, stamp, gi, gf, cell, head, nxt,
+                wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i, hkey, hval, where):
     """Predict every disk's next event from time ``t`` and rebuild the queue."""
-    for i in range(pos.shape[0]):
-        predict_disk(i, t, pos, vel, tloc, rad, stamp, gi, gf, cell, head, nxt,
-                     wa, wb, wstart, wwall, wsx, wsy, ev_t, ev_i)
-    queue.build(heap, where, ev_t)
+    times = np.empty(S.shape[0])
+    for i in range(S.shape[0]):
+        times[i] = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
+                                wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+    queue.build(hkey, hval, where, times)
 
 
 @njit(inline="always")
-def _advance(i, t, pos, vel, tloc):
-    dt = t - tloc[i]
-    pos[i, 0] += dt * vel[i, 0]
-    pos[i, 1] += dt * vel[i, 1]
-    tloc[i] = t
+def _advance(i, t, S):
+    dt = t - S[i, T]
+    S[i, X] += dt * S[i, VX]
+    S[i, Y] += dt * S[i, VY]
+    S[i, T] = t
 
 
 @njit(inline="always")
-def _reflect(i, nx, ny, vel, invm, acc, slot):
+def _reflect(i, nx, ny, S, acc, slot):
     """Mirror the velocity of disk ``i`` in the unit normal ``n`` (if approaching)."""
-    vn = vel[i, 0] * nx + vel[i, 1] * ny
+    vn = S[i, VX] * nx + S[i, VY] * ny
     if vn < 0.0:
-        vel[i, 0] -= 2.0 * vn * nx
-        vel[i, 1] -= 2.0 * vn * ny
-        acc[slot] += -2.0 * vn / invm[i]
+        S[i, VX] -= 2.0 * vn * nx
+        S[i, VY] -= 2.0 * vn * ny
+        acc[slot] += -2.0 * vn / S[i, INVM]
 
 
 @njit
 def run(t_end, max_collisions, max_events,
-        pos, vel, tloc, rad, invm, stamp, image,
-        gi, gf, cell, head, nxt, prv,
+        S, stamp, image, gi, gf, cell, head, nxt, prv,
         wa, wb, wstart, wwall, wsx, wsy,
-        ev_t, ev_i, heap, where,
+        nc_i, ev_i, hkey, hval, where,
         counts, acc, out, info, log_t, log_e, log_n):
     """Process events in time order.
 
@@ -209,8 +303,8 @@ def run(t_end, max_collisions, max_events,
     n_ev = 0
     status = REACHED_TIME
     while True:
-        i = heap[0]
-        t = ev_t[i]
+        i = hval[0]
+        t = hkey[0]
         if t == INF:
             status = NO_EVENTS
             break
@@ -228,60 +322,61 @@ def run(t_end, max_collisions, max_events,
             j = partner
             if stamp[j] != ev_i[i, 3]:
                 # The partner changed course since this was predicted: re-predict i only.
-                predict_disk(i, t, pos, vel, tloc, rad, stamp, gi, gf, cell, head, nxt,
-                             wa, wb, wstart, wwall, wsx, wsy, ev_t, ev_i)
-                queue.update(heap, where, ev_t, i)
+                t_new = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
+                                     wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+                queue.set_time(hkey, hval, where, i, t_new)
                 counts[C_STALE] += 1
                 continue
-            if invm[i] == 0.0 and invm[j] == 0.0:
+            if S[i, INVM] == 0.0 and S[j, INVM] == 0.0:
                 info[0] = i
                 info[1] = j
                 status = ERR_IMMOVABLE_PAIR
                 break
-            _advance(i, t, pos, vel, tloc)
-            _advance(j, t, pos, vel, tloc)
+            _advance(i, t, S)
+            _advance(j, t, S)
             sx = aux // 3 - 1
             sy = aux % 3 - 1
-            dx = pos[i, 0] - (pos[j, 0] + sx * width)
-            dy = pos[i, 1] - (pos[j, 1] + sy * height)
+            dx = S[i, X] - (S[j, X] + sx * width)
+            dy = S[i, Y] - (S[j, Y] + sy * height)
             dist = math.sqrt(dx * dx + dy * dy)
             nx = dx / dist
             ny = dy / dist
-            dvn = (vel[i, 0] - vel[j, 0]) * nx + (vel[i, 1] - vel[j, 1]) * ny
+            dvn = (S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny
             if dvn < 0.0:
                 # Impulse J along n: momentum J n moves from j to i; with the reduced
                 # mass this reverses the normal relative velocity (elastic).
-                impulse = -2.0 * dvn / (invm[i] + invm[j])
-                vel[i, 0] += impulse * invm[i] * nx
-                vel[i, 1] += impulse * invm[i] * ny
-                vel[j, 0] -= impulse * invm[j] * nx
-                vel[j, 1] -= impulse * invm[j] * ny
+                wi = S[i, INVM]
+                wj = S[j, INVM]
+                impulse = -2.0 * dvn / (wi + wj)
+                S[i, VX] += impulse * wi * nx
+                S[i, VY] += impulse * wi * ny
+                S[j, VX] -= impulse * wj * nx
+                S[j, VY] -= impulse * wj * ny
                 acc[A_VIRIAL] += impulse * dist
             stamp[i] += 1
             stamp[j] += 1
-            predict_disk(i, t, pos, vel, tloc, rad, stamp, gi, gf, cell, head, nxt,
-                         wa, wb, wstart, wwall, wsx, wsy, ev_t, ev_i)
-            queue.update(heap, where, ev_t, i)
-            predict_disk(j, t, pos, vel, tloc, rad, stamp, gi, gf, cell, head, nxt,
-                         wa, wb, wstart, wwall, wsx, wsy, ev_t, ev_i)
-            queue.update(heap, where, ev_t, j)
+            t_new = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
+                                 wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+            queue.set_time(hkey, hval, where, i, t_new)
+            t_new = predict_disk(j, t, S, stamp, gi, gf, cell, head, nxt,
+                                 wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+            queue.set_time(hkey, hval, where, j, t_new)
             counts[C_COLLISIONS] += 1
             n_coll += 1
         elif kind == SEGMENT or kind == BOX:
-            if invm[i] == 0.0:
+            if S[i, INVM] == 0.0:
                 info[0] = i
                 info[1] = partner if kind == SEGMENT else -1 - aux
                 status = ERR_IMMOVABLE_WALL
                 break
-            _advance(i, t, pos, vel, tloc)
+            _advance(i, t, S)
             if kind == BOX:
-                axis = aux // 2
                 # Lower wall: normal +e; upper wall: normal -e.
                 sign = 1.0 if aux % 2 == 0 else -1.0
-                if axis == 0:
-                    _reflect(i, sign, 0.0, vel, invm, acc, A_BOX + aux)
+                if aux < 2:
+                    _reflect(i, sign, 0.0, S, acc, A_BOX + aux)
                 else:
-                    _reflect(i, 0.0, sign, vel, invm, acc, A_BOX + aux)
+                    _reflect(i, 0.0, sign, S, acc, A_BOX + aux)
             else:
                 part = aux % 3
                 code = aux // 3
@@ -297,25 +392,25 @@ def run(t_end, max_collisions, max_events,
                     ln = math.sqrt(ux * ux + uy * uy)
                     nx = -uy / ln
                     ny = ux / ln
-                    if (pos[i, 0] - ax) * nx + (pos[i, 1] - ay) * ny < 0.0:
+                    if (S[i, X] - ax) * nx + (S[i, Y] - ay) * ny < 0.0:
                         nx = -nx
                         ny = -ny
                 else:
                     ex = ax if part == 1 else bx
                     ey = ay if part == 1 else by
-                    nx = pos[i, 0] - ex
-                    ny = pos[i, 1] - ey
+                    nx = S[i, X] - ex
+                    ny = S[i, Y] - ey
                     ln = math.sqrt(nx * nx + ny * ny)
                     nx /= ln
                     ny /= ln
-                _reflect(i, nx, ny, vel, invm, acc, A_SEGMENTS)
+                _reflect(i, nx, ny, S, acc, A_SEGMENTS)
             stamp[i] += 1
-            predict_disk(i, t, pos, vel, tloc, rad, stamp, gi, gf, cell, head, nxt,
-                         wa, wb, wstart, wwall, wsx, wsy, ev_t, ev_i)
-            queue.update(heap, where, ev_t, i)
+            t_new = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
+                                 wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+            queue.set_time(hkey, hval, where, i, t_new)
             counts[C_WALL] += 1
         else:  # CROSS
-            _advance(i, t, pos, vel, tloc)
+            _advance(i, t, S)
             c = cell[i]
             cx = c % ncx
             cy = c // ncx
@@ -324,38 +419,42 @@ def run(t_end, max_collisions, max_events,
                 cx += 1
                 if cx == ncx:
                     cx = 0
-                    pos[i, 0] -= width
+                    S[i, X] -= width
                     image[i, 0] += 1
                     wrapped = True
             elif aux == 1:
                 cx -= 1
                 if cx < 0:
                     cx = ncx - 1
-                    pos[i, 0] += width
+                    S[i, X] += width
                     image[i, 0] -= 1
                     wrapped = True
             elif aux == 2:
                 cy += 1
                 if cy == ncy:
                     cy = 0
-                    pos[i, 1] -= height
+                    S[i, Y] -= height
                     image[i, 1] += 1
                     wrapped = True
             else:
                 cy -= 1
                 if cy < 0:
                     cy = ncy - 1
-                    pos[i, 1] += height
+                    S[i, Y] += height
                     image[i, 1] -= 1
                     wrapped = True
-            if wrapped:
-                # Events of other disks hold i's image shift: invalidate them.
-                stamp[i] += 1
             remove(i, cell, head, nxt, prv)
             insert(i, cx + ncx * cy, cell, head, nxt, prv)
-            predict_disk(i, t, pos, vel, tloc, rad, stamp, gi, gf, cell, head, nxt,
-                         wa, wb, wstart, wwall, wsx, wsy, ev_t, ev_i)
-            queue.update(heap, where, ev_t, i)
+            if wrapped:
+                # Other disks' predictions hold i's image shift: invalidate them, and
+                # the kept candidate of i is in the old frame: predict afresh.
+                stamp[i] += 1
+                t_new = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
+                                     wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+            else:
+                t_new = predict_after_crossing(i, t, aux, S, stamp, gi, gf, cell, head, nxt,
+                                               wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+            queue.set_time(hkey, hval, where, i, t_new)
             counts[C_CROSSINGS] += 1
 
         n_ev += 1
@@ -375,16 +474,15 @@ def run(t_end, max_collisions, max_events,
 
 
 @njit
-def synchronized_positions(t, pos, vel, tloc, gi, gf, out):
+def synchronized_positions(t, S, gi, gf, out):
     """Positions of all disks at time ``t`` (>= every local time), wrapped into the box."""
-    for i in range(pos.shape[0]):
-        dt = t - tloc[i]
-        x = pos[i, 0] + dt * vel[i, 0]
-        y = pos[i, 1] + dt * vel[i, 1]
+    for i in range(S.shape[0]):
+        dt = t - S[i, T]
+        x = S[i, X] + dt * S[i, VX]
+        y = S[i, Y] + dt * S[i, VY]
         if gi[2] != 0:
             x -= gf[0] * math.floor(x / gf[0])
         if gi[3] != 0:
             y -= gf[1] * math.floor(y / gf[1])
         out[i, 0] = x
         out[i, 1] = y
-

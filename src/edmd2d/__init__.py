@@ -7,9 +7,25 @@
 1
 """
 
+from . import theory
+from .analysis import (
+    hexatic_order,
+    maxwell_boltzmann_test,
+    mean_squared_displacement,
+    radial_distribution,
+    speed_distribution,
+    trajectory,
+)
 from .builders import lattice_packing_limit, make_gas
 from .geometry import Box, Wall
+from .measure import Measurement, kinetic_temperature, measure
 from .simulation import Counts, Simulation
 
-__all__ = ["Box", "Wall", "Simulation", "Counts", "make_gas", "lattice_packing_limit"]
+__all__ = [
+    "Box", "Wall", "Simulation", "Counts", "make_gas", "lattice_packing_limit",
+    "measure", "Measurement", "kinetic_temperature",
+    "radial_distribution", "speed_distribution", "maxwell_boltzmann_test",
+    "trajectory", "mean_squared_displacement", "hexatic_order",
+    "theory",
+]
 __version__ = "0.1.0"

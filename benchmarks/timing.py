@@ -1,0 +1,94 @@
+"""Timing helpers shared by the benchmark scripts (no edmd2d internals).
+
+The engine is timed through its public API only: ``sim.advance(collisions=k)`` and the
+event counters in ``sim.counts``.  Slow peers are timed with a wall-clock budget instead
+of a fixed amount of work, so that a benchmark point costs about the same time whatever
+the speed of the code under test.
+"""
+
+from __future__ import annotations
+
+import statistics
+import time
+
+import numpy as np
+
+
+def stats(values) -> dict:
+    """Median, min and max of a list of rates (the median is the headline number)."""
+    values = list(values)
+    return {
+        "median": statistics.median(values),
+        "min": min(values),
+        "max": max(values),
+    }
+
+
+def engine_array_bytes(sim) -> int:
+    """Bytes held by the Simulation's numpy arrays (state, grid, event queue, counters).
+
+    This reads the *private* attributes through ``vars(sim)``: a measurement, not an
+    API.  Everything the engine needs between events lives in these arrays, so their
+    total is the engine's memory footprint.
+    """
+    return int(sum(v.nbytes for v in vars(sim).values() if isinstance(v, np.ndarray)))
+
+
+def count_delta(before, after) -> dict:
+    """Differences of two ``sim.counts`` snapshots, as a plain dict."""
+    names = ("collisions", "wall_collisions", "cell_crossings", "events", "stale")
+    return {name: getattr(after, name) - getattr(before, name) for name in names}
+
+
+def time_advance(sim, collisions: int) -> dict:
+    """Run ``sim.advance(collisions=collisions)`` once; seconds, counts and physical time."""
+    c0, t_phys0 = sim.counts, sim.time
+    cpu0 = time.process_time()
+    t0 = time.perf_counter()
+    sim.advance(collisions=collisions)
+    seconds = time.perf_counter() - t0
+    cpu = time.process_time() - cpu0
+    run = count_delta(c0, sim.counts)
+    run["seconds"] = seconds
+    # CPU time / wall time < 1 means the process was descheduled (a busy machine).
+    run["cpu_share"] = cpu / seconds if seconds > 0 else 1.0
+    run["physical_time"] = sim.time - t_phys0
+    return run
+
+
+def time_engine(sim, *, seconds: float, repeats: int, rate_guess: float) -> list[dict]:
+    """``repeats`` timed runs of about ``seconds`` each, continuing the same simulation.
+
+    ``rate_guess`` (collisions per second, e.g. from an untimed equilibration run) sets
+    the number of collisions per run; at least 1000 so that the call overhead of
+    ``advance`` stays negligible.
+    """
+    per_run = max(1000, int(rate_guess * seconds))
+    return [time_advance(sim, per_run) for _ in range(repeats)]
+
+
+def summarize_runs(runs: list[dict], n: int) -> dict:
+    """Collision and event rates (median, min, max) over timed runs of ``n`` disks."""
+    return {
+        "collisions_per_s": stats(r["collisions"] / r["seconds"] for r in runs),
+        "events_per_s": stats(r["events"] / r["seconds"] for r in runs),
+        "physical_time_per_s": stats(r["physical_time"] / r["seconds"] for r in runs),
+        "collisions_per_disk_per_run": runs[0]["collisions"] / n,
+        "cpu_share_min": min(r["cpu_share"] for r in runs),
+        "stale_per_collision": sum(r["stale"] for r in runs)
+        / max(1, sum(r["collisions"] for r in runs)),
+    }
+
+
+def run_for(step, seconds: float) -> tuple[int, float]:
+    """Call ``step()`` until ``seconds`` of wall time have passed (at least once).
+
+    Returns the summed return values of ``step`` (e.g. collisions done) and the time.
+    """
+    done = 0
+    t0 = time.perf_counter()
+    while True:
+        done += step()
+        elapsed = time.perf_counter() - t0
+        if elapsed >= seconds:
+            return done, elapsed

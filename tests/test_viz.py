@@ -230,6 +230,12 @@ def test_save_mp4(tmp_path):
     path = viz.save(anim, tmp_path / "run.mp4", progress=False)
     assert path.stat().st_size > 0
     assert sim.time == anim.frame_times[-1]
+    try:
+        import imageio_ffmpeg
+    except ImportError:
+        return
+    frames, _ = imageio_ffmpeg.count_frames_and_secs(str(path))
+    assert frames == len(anim.frame_times)
 
 
 def test_save_mp4_without_ffmpeg_says_how_to_get_it(tmp_path, monkeypatch):

@@ -355,7 +355,8 @@ def save(
     if isinstance(obj, SimulationAnimation):
         obj._check_can_start()
     if fps is None:
-        fps = getattr(obj, "fps", None)
+        # ours carry fps; any other matplotlib animation has its frame interval in ms
+        fps = getattr(obj, "fps", None) or 1000.0 / getattr(obj, "_interval", 200)
     else:
         fps = as_positive_float("fps", fps)
     if progress is True:
@@ -371,7 +372,7 @@ def save(
     rc = {}
     if writer is None:
         if suffix in _GIF_SUFFIXES:
-            writer = _GifWriter(fps=fps if fps is not None else 30)
+            writer = _GifWriter(fps=fps)
             fps = None  # given to the writer; matplotlib refuses it twice
         elif suffix in _VIDEO_SUFFIXES:
             exe = _ffmpeg_executable(path.name)

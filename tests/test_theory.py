@@ -1,0 +1,109 @@
+"""Reference values: hard-disk equations of state and 2D kinetic theory."""
+
+from __future__ import annotations
+
+import doctest
+import math
+
+import numpy as np
+import pytest
+from scipy import integrate
+
+from edmd2d import theory
+
+
+def second_order_coefficient(f, eta=1e-4):
+    """(f(eta) - 1 - 2 eta) / eta^2: the eta^2 coefficient, to O(eta)."""
+    return (f(eta) - 1.0 - 2.0 * eta) / eta**2
+
+
+def test_virial_series_has_the_exact_low_order_coefficients():
+    # B2 / a = 2, B3 / a^2 = 16/3 - 4 sqrt(3)/pi, B4 / a^3 = 16 - 36 sqrt(3)/pi + 80/pi^2
+    # (a the disk area): Z = 1 + 2 eta + 3.1280 eta^2 + 4.2579 eta^3 + ...
+    eta = 0.01
+    b3 = (theory.virial_z(eta, 3) - theory.virial_z(eta, 2)) / eta**2
+    b4 = (theory.virial_z(eta, 4) - theory.virial_z(eta, 3)) / eta**3
+    assert theory.virial_z(eta, 2) == pytest.approx(1 + 2 * eta, rel=1e-15)
+    assert b3 == pytest.approx(16 / 3 - 4 * math.sqrt(3) / math.pi, rel=1e-9)
+    assert b4 == pytest.approx(16 - 36 * math.sqrt(3) / math.pi + 80 / math.pi**2, rel=1e-7)
+    assert b3 == pytest.approx(3.1280, abs=1e-4) and b4 == pytest.approx(4.2579, abs=1e-4)
+
+
+def test_closed_forms_agree_with_the_virial_series_at_low_density():
+    # Henderson: 1 + 2 eta + 3.125 eta^2 (B3 within 0.1%); SHY: exact B2 only.
+    for eta in (0.01, 0.05):
+        assert theory.henderson_z(eta) == pytest.approx(theory.virial_z(eta), abs=10 * eta**3)
+        assert theory.santos_z(eta) == pytest.approx(theory.virial_z(eta), abs=2 * eta**2)
+    assert second_order_coefficient(theory.henderson_z) == pytest.approx(3.125, abs=1e-3)
+    # SHY: 4 - (2 eta_max - 1) / eta_max^2 = 3.0105, 4% below the exact 3.1280.
+    assert second_order_coefficient(theory.santos_z) == pytest.approx(3.0105, abs=1e-3)
+    assert second_order_coefficient(theory.virial_z) == pytest.approx(3.1280, abs=1e-3)
+
+
+def test_santos_diverges_at_close_packing():
+    assert theory.ETA_CLOSE_PACKED == pytest.approx(0.9068996821, rel=1e-10)
+    assert theory.santos_z(theory.ETA_CLOSE_PACKED - 1e-6) > 1e5
+    with pytest.raises(ValueError, match="packing fraction"):
+        theory.santos_z(theory.ETA_CLOSE_PACKED)
+
+
+def test_vectorised_and_validated():
+    eta = np.array([0.1, 0.3, 0.5])
+    for f in (theory.henderson_z, theory.santos_z, theory.virial_z):
+        z = f(eta)
+        assert z.shape == (3,) and np.all(np.diff(z) > 0)
+        assert isinstance(f(0.2), float)
+        for bad in (-0.1, 1.0, math.nan):
+            with pytest.raises(ValueError, match="packing fraction"):
+                f(bad)
+    with pytest.raises(ValueError, match="order"):
+        theory.virial_z(0.1, order=11)
+    with pytest.raises(ValueError, match="order"):
+        theory.virial_z(0.1, order=1)
+
+
+def test_contact_value_inverts_the_virial_relation():
+    eta = 0.45
+    g = theory.contact_value(theory.henderson_z(eta), eta)
+    assert 1 + 2 * eta * g == pytest.approx(theory.henderson_z(eta), rel=1e-14)
+    # The dilute limit: g(sigma) -> 1 (from B2 alone).
+    assert theory.contact_value(theory.virial_z(1e-8), 1e-8) == pytest.approx(1.0, rel=1e-6)
+    with pytest.raises(ValueError, match="packing fraction"):
+        theory.contact_value(1.0, 0.0)
+
+
+def test_maxwell_boltzmann_speed_moments():
+    kt, m = 1.7, 2.3
+    pdf = lambda v: theory.maxwell_boltzmann_speed_pdf(v, kt, m)  # noqa: E731
+    top = 40 * math.sqrt(kt / m)
+    assert integrate.quad(pdf, 0, top)[0] == pytest.approx(1.0, rel=1e-10)
+    mean = integrate.quad(lambda v: v * pdf(v), 0, top)[0]
+    assert mean == pytest.approx(theory.mean_speed(kt, m), rel=1e-10)
+    # 2D equipartition: <m v^2 / 2> = kT (two quadratic degrees of freedom).
+    second = integrate.quad(lambda v: v * v * pdf(v), 0, top)[0]
+    assert 0.5 * m * second == pytest.approx(kt, rel=1e-10)
+    assert theory.maxwell_boltzmann_speed_pdf(-1.0) == 0.0
+    with pytest.raises(ValueError, match="temperature"):
+        theory.maxwell_boltzmann_speed_pdf(1.0, temperature=0.0)
+
+
+def test_enskog_rate_matches_the_relative_speed_average():
+    # omega = n g sigma * integral over the contact circle of the approach flux:
+    # <|u| * 2 sigma> with u the relative velocity of two Maxwellian disks (mass m,
+    # temperature kT): u is Gaussian with variance 2 kT / m per component.  Compute
+    # <|u|> by quadrature and compare with sqrt(pi kT / m).
+    kt, m = 0.8, 1.5
+    s2 = 2 * kt / m
+    mean_u = integrate.quad(lambda u: u * (u / s2) * math.exp(-u * u / (2 * s2)), 0, 60)[0]
+    assert mean_u == pytest.approx(math.sqrt(math.pi * kt / m), rel=1e-10)
+    n, sigma, g = 0.3, 1.2, 2.1
+    omega = theory.enskog_collision_rate(n, sigma, g, temperature=kt, mass=m)
+    assert omega == pytest.approx(n * g * 2 * sigma * mean_u, rel=1e-10)
+    assert theory.number_density(0.5, diameter=2.0) == pytest.approx(0.5 / math.pi)
+    with pytest.raises(ValueError, match="diameter"):
+        theory.enskog_collision_rate(n, 0.0, g)
+
+
+def test_docstring_examples():
+    result = doctest.testmod(theory)
+    assert result.attempted > 0 and result.failed == 0

@@ -55,9 +55,10 @@ def reference_z(eta):
     """Literature interval (lo, hi) for Z of the infinite system.
 
     Dilute to moderate fluid (eta <= 0.3): the virial series to B_10 (exact B_2..B_4,
-    Clisby-McCoy B_5..B_10) plus a bound on the truncated terms.  Dense fluid: between
-    the Santos-Lopez de Haro-Yuste EOS (below the simulation data) and Henderson's
-    (above it), the two classic closed forms.
+    Clisby-McCoy B_5..B_10) plus a bound on the truncated terms.  Dense fluid up to
+    eta = 0.6: between the Santos-Lopez de Haro-Yuste EOS (below the data there) and
+    Henderson's (above), the two classic closed forms.  (Beyond ~0.62 the SHY curve
+    rises above the data: examples/equation_of_state.py.)
     """
     if eta <= 0.3:
         z = theory.virial_z(eta)

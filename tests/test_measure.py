@@ -343,6 +343,28 @@ def test_closed_box_wall_virial_identity():
     assert m.degrees_of_freedom == 2 * 600
 
 
+def test_walled_mixture_is_conserved_and_balanced():
+    # A closed box of a 50:50 mixture (radii 0.5 / 0.7, masses 1 / 2): energy conserved
+    # to rounding, no momentum conservation (dof = 2N), and opposite walls balanced
+    # (the mean forces on x = 0 and x = W are equal in equilibrium).
+    n = 500
+    radii = np.where(np.arange(n) % 2 == 0, 0.5, 0.7)
+    masses = np.where(np.arange(n) % 2 == 0, 1.0, 2.0)
+    sim = ed.make_gas(n, 0.45, radii=radii, masses=masses, periodic=False, seed=21)
+    sim.advance(collisions=50 * n)
+    e0 = sim.kinetic_energy()
+    blocks = [sim.measure(duration=20.0, blocks=1) for _ in range(10)]
+    assert sim.kinetic_energy() == pytest.approx(e0, rel=1e-11)
+    assert {m.degrees_of_freedom for m in blocks} == {2 * n}
+    assert all(m.temperature == pytest.approx(e0 / n, rel=1e-11) for m in blocks)
+    walls = np.array([m.box_wall_pressures for m in blocks])
+    diff_x, diff_y = walls[:, 0] - walls[:, 1], walls[:, 2] - walls[:, 3]
+    for diff in (diff_x, diff_y):
+        err = diff.std(ddof=1) / math.sqrt(len(diff))
+        assert 0 < err < 0.02 * walls.mean()
+        assert abs(diff.mean()) < K_SIGMA * err
+
+
 def channel_wall_vs_bulk(n, eta, frames_per_block, blocks, seed, dt=2.0):
     """Wall pressure of a channel (periodic in x, walls at y = 0 and H) and the density
     in the middle of the channel, block by block (frames ``dt`` apart).

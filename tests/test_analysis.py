@@ -110,6 +110,8 @@ def test_rdf_bad_input():
         ed.radial_distribution(np.zeros((1, 2)), box)
     with pytest.raises(ValueError, match="margin"):
         ed.radial_distribution(pts, ed.Box(10, 10, periodic=False), margin=5.0)
+    with pytest.raises(ValueError, match="outside the walled y"):
+        ed.radial_distribution(pts + [0, 1], ed.Box(10, 10, periodic=(True, False)))
     sim = ed.make_gas(10, 0.1, seed=0)
     with pytest.raises(TypeError, match="own box"):
         ed.radial_distribution(sim, box)

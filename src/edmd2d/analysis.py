@@ -53,20 +53,29 @@ def _positions_and_box(source, box, name="positions"):
 
 
 def _wrap(pos: np.ndarray, box: Box) -> np.ndarray:
-    """Positions wrapped into ``[0, L)`` on periodic axes (for cKDTree's boxsize)."""
+    """Positions wrapped into ``[0, L)`` on periodic axes; on walled axes they must lie
+    inside the box."""
     out = pos.copy()
     for axis, length in enumerate((box.width, box.height)):
         if box.periodic[axis]:
             col = np.mod(out[:, axis], length)
             col[col >= length] = 0.0  # mod can round up to L
             out[:, axis] = col
+        elif ((out[:, axis] < 0) | (out[:, axis] > length)).any():
+            raise ValueError(
+                f"positions lie outside the walled {'xy'[axis]} axis [0, {length}] of the box"
+            )
     return out
 
 
-def _boxsize(box: Box) -> np.ndarray:
-    # scipy's cKDTree treats a boxsize of 0 along an axis as "not periodic".
-    return np.array([box.width if box.periodic[0] else 0.0,
-                     box.height if box.periodic[1] else 0.0])
+def _boxsize(box: Box, reach: float):
+    """``boxsize`` for scipy's cKDTree: the box on periodic axes; on a walled axis a
+    period longer than the box by more than ``reach``, so that no pair closer than
+    ``reach`` is ever found through it (positions there lie in [0, L])."""
+    if not any(box.periodic):
+        return None
+    return np.array([length if p else length + reach + 1.0
+                     for length, p in zip((box.width, box.height), box.periodic)])
 
 
 def _min_image(d: np.ndarray, box: Box) -> np.ndarray:
@@ -166,7 +175,7 @@ def radial_distribution(source, box: Box | None = None, *, r_max: float | None =
     edges = np.linspace(0.0, r_max, bins + 1)
     hist = np.zeros(bins)
     n_frames, n = frames.shape[0], frames.shape[1]
-    bsize = _boxsize(box)
+    bsize = _boxsize(box, r_max)
     for pos in frames:
         pos = _wrap(pos, box)
         tree = spatial.cKDTree(pos, boxsize=bsize)
@@ -434,7 +443,7 @@ def hexatic_order(source, box: Box | None = None, *, neighbors="voronoi"):
                      if p] or [math.inf])
         if cutoff >= limit:
             raise ValueError(f"the cutoff {cutoff} must be below half the periodic side {limit}")
-        pairs = spatial.cKDTree(pos, boxsize=_boxsize(box)).query_pairs(
+        pairs = spatial.cKDTree(pos, boxsize=_boxsize(box, cutoff)).query_pairs(
             cutoff, output_type="ndarray")
         i, j = pairs[:, 0], pairs[:, 1]
     d = _min_image(pos[j] - pos[i], box)

@@ -3,6 +3,8 @@
 The functions take either a :class:`~edmd2d.Simulation` (its current state) or plain
 arrays with a :class:`~edmd2d.Box`, so that stored snapshots can be analysed too.
 Distances respect the box: minimum image on periodic axes, none across walls.
+scipy (spatial, stats) is imported where it is used, so that ``import edmd2d`` stays
+quick.
 """
 
 from __future__ import annotations
@@ -10,7 +12,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import spatial, stats
 
 from ._validate import as_count, as_float_array, as_positive_float
 from .geometry import Box
@@ -172,6 +173,8 @@ def radial_distribution(source, box: Box | None = None, *, r_max: float | None =
                 f"r_max={r_max} is too large for this box: at most {r_limit:.6g} (half a "
                 "periodic side, or the walled extent open to the disk centres)"
             )
+    from scipy import spatial
+
     edges = np.linspace(0.0, r_max, bins + 1)
     hist = np.zeros(bins)
     n_frames, n = frames.shape[0], frames.shape[1]
@@ -305,6 +308,8 @@ def maxwell_boltzmann_test(source, *, masses=None, temperature: float | None = N
         kt = as_positive_float("temperature", temperature)
     if not kt > 0:
         raise ValueError(f"the temperature must be > 0 for the test, got {kt}")
+    from scipy import stats
+
     return stats.kstest(energy / kt, "expon")
 
 
@@ -428,6 +433,8 @@ def hexatic_order(source, box: Box | None = None, *, neighbors="voronoi"):
     >>> round(abs(psi), 12), bool(np.allclose(np.abs(local), 1))
     (1.0, True)
     """
+    from scipy import spatial
+
     frames, box, _ = _positions_and_box(source, box)
     if frames.shape[0] != 1:
         raise ValueError("hexatic_order takes one configuration of shape (N, 2)")
@@ -477,6 +484,8 @@ def _voronoi_pairs(pos: np.ndarray, box: Box):
                     & (shifted[:, 1] > -band) & (shifted[:, 1] < sizes[1] + band))
             pts.append(shifted[keep])
             idx.append(np.flatnonzero(keep))
+    from scipy import spatial
+
     pts = np.concatenate(pts)
     idx = np.concatenate(idx)
     tri = spatial.Delaunay(pts)

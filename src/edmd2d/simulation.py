@@ -25,6 +25,11 @@ _OVERLAP_TOL = 1e-9
 _CELL_MARGIN = 1e-9
 # Events per engine call; between calls Python regains control (Ctrl-C works).
 _CHUNK_EVENTS = 1 << 22
+# Systems at least this large are kept sorted in memory along a Z-order curve over the
+# grid cells, re-sorted every _REORDER_EVENTS_PER_DISK * N events: disks near in space
+# then sit near in memory, which matters once the state no longer fits in the caches.
+_REORDER_MIN_DISKS = 1024
+_REORDER_EVENTS_PER_DISK = 20
 
 _KIND_NAMES = {_loop.DISK: "disk", _loop.SEGMENT: "wall", _loop.BOX: "box"}
 _BOX_WALL_NAMES = ("x=0", "x=width", "y=0", "y=height")
@@ -207,7 +212,16 @@ class Simulation:
         self._log_t = np.zeros(0)
         self._log_e = np.zeros((0, 3), np.int64)
         self._log_n = np.zeros(1, np.int64)
+        # Internal row k holds the user's disk order[k]; public getters translate.
+        self._order = np.arange(n, dtype=np.int64)
+        self._reorder_every = (
+            _REORDER_EVENTS_PER_DISK * n if n >= _REORDER_MIN_DISKS else np.iinfo(np.int64).max
+        )
+        self._since_reorder = 0
+        self._cell_rank = _grid.morton_rank(ncx, ncy) if n >= _REORDER_MIN_DISKS else None
         self._predict_all()
+        if self._cell_rank is not None:
+            self._reorder()
 
     # ------------------------------------------------------------------ validation
     def _check_in_box(self, pos: np.ndarray, rad: np.ndarray) -> np.ndarray:
@@ -270,6 +284,37 @@ class Simulation:
     def _wall_args(self):
         return (self._wa, self._wb, self._wstart, self._wwall, self._wsx, self._wsy)
 
+    def _processed_events(self) -> int:
+        c = self._counts
+        return int(c[_loop.C_COLLISIONS] + c[_loop.C_WALL] + c[_loop.C_CROSSINGS])
+
+    def _reorder(self) -> None:
+        """Re-sort the internal rows along the Z-order of their cells (see module top)."""
+        perm = _grid.order_by_cell(self._cell, self._cell_rank, len(self._cell_rank))
+        inv = np.empty_like(perm)
+        inv[perm] = np.arange(len(perm))
+        self._S = self._S[perm]
+        self._mass = self._mass[perm]
+        self._order = self._order[perm]
+        self._stamp = self._stamp[perm]
+        self._image = self._image[perm]
+        self._cell = self._cell[perm]
+        for events in ("_ev_i", "_nc_i"):
+            ev = getattr(self, events)[perm]
+            disk = ev[:, 0] == _loop.DISK
+            ev[disk, 1] = inv[ev[disk, 1]]
+            setattr(self, events, ev)
+        self._hval = inv[self._hval].astype(self._hval.dtype)
+        self._where = self._where[perm]
+        _grid.build_lists(self._cell, self._head, self._nxt, self._prv)
+        self._since_reorder = 0
+
+    def _to_user(self, internal: np.ndarray) -> np.ndarray:
+        """Rows in the user's disk order (a new array)."""
+        out = np.empty_like(internal)
+        out[self._order] = internal
+        return out
+
     def _predict_all(self) -> None:
         _loop.predict_all(
             self._time, self._S, self._stamp, *self._grid_args(), *self._wall_args(),
@@ -326,15 +371,21 @@ class Simulation:
         info = np.full(2, -1, np.int64)
         while True:
             before = int(self._counts[_loop.C_COLLISIONS])
+            events_before = self._processed_events()
+            budget = min(_CHUNK_EVENTS, self._reorder_every - self._since_reorder)
             status = _loop.run(
-                t_end, remaining, _CHUNK_EVENTS,
+                t_end, remaining, budget,
                 self._S, self._stamp, self._image, *self._grid_args(), self._prv,
                 *self._wall_args(), self._nc_i, self._ev_i, self._hkey, self._hval,
                 self._where,
                 self._counts, self._acc, out, info, self._log_t, self._log_e, self._log_n,
+                self._order,
             )
             self._time = float(out[0])
             remaining -= int(self._counts[_loop.C_COLLISIONS]) - before
+            self._since_reorder += self._processed_events() - events_before
+            if self._since_reorder >= self._reorder_every:
+                self._reorder()
             if status != _loop.REACHED_EVENT_LIMIT:
                 break
         if status in (_loop.REACHED_TIME, _loop.NO_EVENTS) and until is not None:
@@ -349,7 +400,9 @@ class Simulation:
             )
         i, j = int(info[0]), int(info[1])
         t_bad = float(self._hkey[self._where[i]])
+        i = int(self._order[i])
         if status == _loop.ERR_IMMOVABLE_PAIR:
+            j = int(self._order[j])
             raise RuntimeError(
                 f"immovable disks {i} and {j} (mass=inf) meet at t={t_bad}: two immovable "
                 f"bodies cannot collide. The simulation stopped at t={self._time}."
@@ -387,7 +440,7 @@ class Simulation:
         """Disk centres at :attr:`time`, shape (N, 2), a copy (wrapped into the box)."""
         out = np.empty((len(self._S), 2))
         _loop.synchronized_positions(self._time, self._S, self._gi, self._gf, out)
-        return out
+        return self._to_user(out)
 
     @property
     def unwrapped_positions(self) -> np.ndarray:
@@ -398,22 +451,22 @@ class Simulation:
         """
         S = self._S
         dt = (self._time - S[:, _loop.T])[:, None]
-        return S[:, 0:2] + dt * S[:, 2:4] + self._image * self._box.size
+        return self._to_user(S[:, 0:2] + dt * S[:, 2:4] + self._image * self._box.size)
 
     @property
     def velocities(self) -> np.ndarray:
         """Disk velocities, shape (N, 2), a copy."""
-        return self._S[:, _loop.VX:_loop.VY + 1].copy()
+        return self._to_user(self._S[:, _loop.VX:_loop.VY + 1])
 
     @property
     def radii(self) -> np.ndarray:
         """Disk radii, shape (N,), a copy."""
-        return self._S[:, _loop.R].copy()
+        return self._to_user(self._S[:, _loop.R])
 
     @property
     def masses(self) -> np.ndarray:
         """Disk masses, shape (N,), a copy (``inf`` for immovable disks)."""
-        return self._mass.copy()
+        return self._to_user(self._mass)
 
     @property
     def box(self) -> Box:
@@ -451,7 +504,7 @@ class Simulation:
         """
         vel = as_float_array("velocities", velocities, (len(self), 2))
         self._sync_all()
-        self._S[:, _loop.VX:_loop.VY + 1] = vel
+        self._S[:, _loop.VX:_loop.VY + 1] = vel[self._order]
         self._stamp += 1
         self._predict_all()
 

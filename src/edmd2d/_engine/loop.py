@@ -281,7 +281,7 @@ def run(t_end, max_collisions, max_events,
         S, stamp, image, gi, gf, cell, head, nxt, prv,
         wa, wb, wstart, wwall, wsx, wsy,
         nc_i, ev_i, hkey, hval, where,
-        counts, acc, out, info, log_t, log_e, log_n):
+        counts, acc, out, info, log_t, log_e, log_n, order):
     """Process events in time order.
 
     Stops before the first event later than ``t_end``, right after the
@@ -292,7 +292,8 @@ def run(t_end, max_collisions, max_events,
     it was just before that event.
 
     If ``log_t`` has room, every disk-disk, segment and box-wall event is recorded as
-    ``log_t[k]``, ``log_e[k] = (kind, i, partner)`` with ``log_n[0]`` counting them all.
+    ``log_t[k]``, ``log_e[k] = (kind, i, partner)`` with ``log_n[0]`` counting them all;
+    disks are recorded by their user index ``order[i]``.
     """
     ncx = gi[0]
     ncy = gi[1]
@@ -464,8 +465,11 @@ def run(t_end, max_collisions, max_events,
             if k < log_cap:
                 log_t[k] = t
                 log_e[k, 0] = kind
-                log_e[k, 1] = i
-                log_e[k, 2] = partner if kind != BOX else aux
+                log_e[k, 1] = order[i]
+                if kind == DISK:
+                    log_e[k, 2] = order[partner]
+                else:
+                    log_e[k, 2] = partner if kind == SEGMENT else aux
             log_n[0] = k + 1
         if n_coll >= max_collisions:
             status = REACHED_COLLISIONS

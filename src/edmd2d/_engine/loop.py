@@ -120,13 +120,10 @@ def _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy, best, p
 
 
 @njit(inline="always")
-def _schedule(i, t, x, y, vx, vy, c, S, gi, gf, nc_i, ev_i):
+def _schedule(i, t, x, y, vx, vy, cx, cy, S, gi, gf, nc_i, ev_i):
     """Schedule for disk ``i`` the earlier of its kept candidate and leaving its cell;
     returns the event time."""
-    ncx = gi[0]
-    cx = c % ncx
-    cy = c // ncx
-    dtx, dirx = exit_time(x, vx, cx, gf[2], ncx, gi[2] != 0)
+    dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
     dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
     if dty < dtx:
         dtx = dty
@@ -159,9 +156,8 @@ def predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
     y = S[i, Y] + dt0 * vy
     r = S[i, R]
     c = cell[i]
-    ncx = gi[0]
-    cx = c % ncx
-    cy = c // ncx
+    cy = c // gi[0]
+    cx = c - cy * gi[0]
 
     best = INF
     kind = NONE
@@ -198,26 +194,26 @@ def predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
     nc_i[i, 1] = partner
     nc_i[i, 2] = aux
     nc_i[i, 3] = pst if kind == DISK else 0
-    return _schedule(i, t, x, y, vx, vy, c, S, gi, gf, nc_i, ev_i)
+    return _schedule(i, t, x, y, vx, vy, cx, cy, S, gi, gf, nc_i, ev_i)
 
 
 @njit
 def predict_after_crossing(i, t, direction, S, stamp, gi, gf, cell, head, nxt,
                            wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i):
     """Disk ``i`` (at time ``t``, already in its new cell, not wrapped) crossed in
-    ``direction`` (0:+x 1:-x 2:+y 3:-y): scan only the newly exposed row of cells."""
+    ``direction`` (0:+x 1:-x 2:+y 3:-y): scan only the newly exposed row of cells and
+    return the new event time, or -1 if the kept candidate is stale and a full
+    prediction is needed."""
     if nc_i[i, 0] == DISK and stamp[nc_i[i, 1]] != nc_i[i, 3]:
-        return predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
-                            wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+        return -1.0
     vx = S[i, VX]
     vy = S[i, VY]
     x = S[i, X]  # advanced to t by the caller
     y = S[i, Y]
     r = S[i, R]
     c = cell[i]
-    ncx = gi[0]
-    cx = c % ncx
-    cy = c // ncx
+    cy = c // gi[0]
+    cx = c - cy * gi[0]
     if direction == 0:
         ox0, ox1, oy0, oy1 = 1, 1, -1, 1
     elif direction == 1:
@@ -244,7 +240,7 @@ def predict_after_crossing(i, t, direction, S, stamp, gi, gf, cell, head, nxt,
         nc_i[i, 1] = pw
         nc_i[i, 2] = aw
         nc_i[i, 3] = 0
-    return _schedule(i, t, x, y, vx, vy, c, S, gi, gf, nc_i, ev_i)
+    return _schedule(i, t, x, y, vx, vy, cx, cy, S, gi, gf, nc_i, ev_i)
 
 
 @njit
@@ -318,52 +314,51 @@ def run(t_end, max_collisions, max_events,
         kind = ev_i[i, 0]
         partner = ev_i[i, 1]
         aux = ev_i[i, 2]
+        # Disks whose events must be predicted afresh once this event is handled.
+        # (One call site for the full prediction keeps the compiled loop small.)
+        redo0 = -1
+        redo1 = -1
+        stale = False
 
         if kind == DISK:
             j = partner
             if stamp[j] != ev_i[i, 3]:
                 # The partner changed course since this was predicted: re-predict i only.
-                t_new = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
-                                     wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
-                queue.set_time(hkey, hval, where, i, t_new)
-                counts[C_STALE] += 1
-                continue
-            if S[i, INVM] == 0.0 and S[j, INVM] == 0.0:
+                redo0 = i
+                stale = True
+            elif S[i, INVM] == 0.0 and S[j, INVM] == 0.0:
                 info[0] = i
                 info[1] = j
                 status = ERR_IMMOVABLE_PAIR
                 break
-            _advance(i, t, S)
-            _advance(j, t, S)
-            sx = aux // 3 - 1
-            sy = aux % 3 - 1
-            dx = S[i, X] - (S[j, X] + sx * width)
-            dy = S[i, Y] - (S[j, Y] + sy * height)
-            dist = math.sqrt(dx * dx + dy * dy)
-            nx = dx / dist
-            ny = dy / dist
-            dvn = (S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny
-            if dvn < 0.0:
-                # Impulse J along n: momentum J n moves from j to i; with the reduced
-                # mass this reverses the normal relative velocity (elastic).
-                wi = S[i, INVM]
-                wj = S[j, INVM]
-                impulse = -2.0 * dvn / (wi + wj)
-                S[i, VX] += impulse * wi * nx
-                S[i, VY] += impulse * wi * ny
-                S[j, VX] -= impulse * wj * nx
-                S[j, VY] -= impulse * wj * ny
-                acc[A_VIRIAL] += impulse * dist
-            stamp[i] += 1
-            stamp[j] += 1
-            t_new = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
-                                 wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
-            queue.set_time(hkey, hval, where, i, t_new)
-            t_new = predict_disk(j, t, S, stamp, gi, gf, cell, head, nxt,
-                                 wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
-            queue.set_time(hkey, hval, where, j, t_new)
-            counts[C_COLLISIONS] += 1
-            n_coll += 1
+            else:
+                _advance(i, t, S)
+                _advance(j, t, S)
+                sx = aux // 3 - 1
+                sy = aux % 3 - 1
+                dx = S[i, X] - (S[j, X] + sx * width)
+                dy = S[i, Y] - (S[j, Y] + sy * height)
+                dist = math.sqrt(dx * dx + dy * dy)
+                nx = dx / dist
+                ny = dy / dist
+                dvn = (S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny
+                if dvn < 0.0:
+                    # Impulse J along n: momentum J n moves from j to i; with the reduced
+                    # mass this reverses the normal relative velocity (elastic).
+                    wi = S[i, INVM]
+                    wj = S[j, INVM]
+                    impulse = -2.0 * dvn / (wi + wj)
+                    S[i, VX] += impulse * wi * nx
+                    S[i, VY] += impulse * wi * ny
+                    S[j, VX] -= impulse * wj * nx
+                    S[j, VY] -= impulse * wj * ny
+                    acc[A_VIRIAL] += impulse * dist
+                stamp[i] += 1
+                stamp[j] += 1
+                redo0 = i
+                redo1 = j
+                counts[C_COLLISIONS] += 1
+                n_coll += 1
         elif kind == SEGMENT or kind == BOX:
             if S[i, INVM] == 0.0:
                 info[0] = i
@@ -406,15 +401,13 @@ def run(t_end, max_collisions, max_events,
                     ny /= ln
                 _reflect(i, nx, ny, S, acc, A_SEGMENTS)
             stamp[i] += 1
-            t_new = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
-                                 wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
-            queue.set_time(hkey, hval, where, i, t_new)
+            redo0 = i
             counts[C_WALL] += 1
         else:  # CROSS
             _advance(i, t, S)
             c = cell[i]
-            cx = c % ncx
             cy = c // ncx
+            cx = c - cy * ncx
             wrapped = False
             if aux == 0:
                 cx += 1
@@ -450,13 +443,25 @@ def run(t_end, max_collisions, max_events,
                 # Other disks' predictions hold i's image shift: invalidate them, and
                 # the kept candidate of i is in the old frame: predict afresh.
                 stamp[i] += 1
-                t_new = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
-                                     wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+                redo0 = i
             else:
                 t_new = predict_after_crossing(i, t, aux, S, stamp, gi, gf, cell, head, nxt,
                                                wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
-            queue.set_time(hkey, hval, where, i, t_new)
+                if t_new < 0.0:
+                    redo0 = i
+                else:
+                    queue.set_time(hkey, hval, where, i, t_new)
             counts[C_CROSSINGS] += 1
+
+        for k in range(2):
+            d = redo0 if k == 0 else redo1
+            if d >= 0:
+                t_new = predict_disk(d, t, S, stamp, gi, gf, cell, head, nxt,
+                                     wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+                queue.set_time(hkey, hval, where, d, t_new)
+        if stale:
+            counts[C_STALE] += 1
+            continue
 
         n_ev += 1
         out[0] = t

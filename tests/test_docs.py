@@ -29,3 +29,13 @@ def test_readme_example_runs():
     exec(compile(blocks[0], "README.md", "exec"), namespace)
     assert namespace["sim"].time > 12.5
     assert namespace["sim"].counts.collisions >= 10
+
+
+def test_viz_is_lazy():
+    # ``import edmd2d`` must not import matplotlib; ``edmd2d.viz`` loads it on demand.
+    import subprocess
+    import sys
+
+    code = ("import sys, edmd2d; assert 'matplotlib' not in sys.modules; "
+            "edmd2d.viz.draw; assert 'matplotlib' in sys.modules")
+    subprocess.run([sys.executable, "-c", code], check=True)

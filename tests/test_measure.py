@@ -19,8 +19,8 @@ import pytest
 import edmd2d as ed
 from edmd2d import theory
 
-# The package exports the function measure(), which shadows the module's name.
-measure_module = importlib.import_module("edmd2d.measure")
+# The module (edmd2d.measurements) and the exported function measure() are distinct.
+measure_module = importlib.import_module("edmd2d.measurements")
 
 # Measured Z_N approaches Z_inf from below as -c Z / N with c ~ 0.4 at eta = 0.3 and
 # 0.5 (python examples/eos_table.py --finite-size: N = 256 ... 16384); allow 2.5 times that.

@@ -18,7 +18,7 @@ from .analysis import (
 )
 from .builders import lattice_packing_limit, make_gas
 from .geometry import Box, Wall
-from .measure import Measurement, kinetic_temperature, measure
+from .measurements import Measurement, kinetic_temperature, measure
 from .simulation import Counts, Simulation
 
 __all__ = [
@@ -29,3 +29,13 @@ __all__ = [
     "theory",
 ]
 __version__ = "0.1.0"
+
+
+def __getattr__(name: str):
+    # ``edmd2d.viz`` is loaded on first use, so that ``import edmd2d`` never imports
+    # matplotlib (an optional dependency).
+    if name == "viz":
+        import importlib
+
+        return importlib.import_module(".viz", __name__)
+    raise AttributeError(f"module 'edmd2d' has no attribute {name!r}")

@@ -267,7 +267,7 @@ def maxwell_boltzmann_test(source, *, masses=None, temperature: float | None = N
     Maxwell-Boltzmann.
 
     When ``temperature`` is not given it is estimated as the mean of ``e`` (for a
-    Simulation: :func:`~edmd2d.measure.kinetic_temperature`); estimating it from the
+    Simulation: :func:`~edmd2d.measurements.kinetic_temperature`); estimating it from the
     same data makes the test slightly conservative (p-values biased upward).  A
     closed system also fixes the total energy, a ``1/N`` effect.
 
@@ -299,7 +299,7 @@ def maxwell_boltzmann_test(source, *, masses=None, temperature: float | None = N
     energy = 0.5 * mass * np.einsum("ij,ij->i", vel, vel)
     if temperature is None:
         if isinstance(source, _simulation_type()):
-            from .measure import kinetic_temperature
+            from .measurements import kinetic_temperature
 
             kt = kinetic_temperature(source)
         else:

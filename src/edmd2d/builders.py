@@ -38,8 +38,9 @@ def make_gas(
     chosen at random as vacancies and, for mixtures, the species shuffled over the sites.
     Velocities are drawn from the Maxwell-Boltzmann distribution, the centre-of-mass
     velocity is removed (n >= 2) and the speeds rescaled so that the temperature is
-    exactly ``temperature`` (k_B = 1; ``kT = sum m v^2 / f`` with ``f = 2n - 2`` degrees
-    of freedom in a fully periodic box, where momentum is conserved, else ``f = 2n``).
+    exactly ``temperature`` (k_B = 1; ``kT = sum m v^2 / f`` with ``f = 2n`` degrees of
+    freedom less one for each periodic axis, along which momentum is conserved: the
+    same count as :func:`edmd2d.measurements.degrees_of_freedom`).
 
     Parameters
     ----------
@@ -119,7 +120,7 @@ def make_gas(
     pick = np.sort(rng.choice(len(sites), size=n, replace=False))
     pos = sites[pick]
     rad = rad[rng.permutation(n)] if radii is not None else rad
-    vel = _maxwell_boltzmann(rng, mass, temperature, all(box.periodic))
+    vel = _maxwell_boltzmann(rng, mass, temperature, sum(box.periodic))
     return Simulation(pos, vel, rad, mass, box=box)
 
 
@@ -212,14 +213,15 @@ def _triangular_sites(n: int, box: Box, spacing_min: float):
     return np.column_stack([x, y])
 
 
-def _maxwell_boltzmann(rng, mass, temperature, momentum_conserved):
+def _maxwell_boltzmann(rng, mass, temperature, conserved_axes):
+    """Gaussian velocities with zero total momentum (n >= 2), scaled to ``temperature``
+    with ``2n - conserved_axes`` degrees of freedom."""
     n = len(mass)
     vel = rng.normal(size=(n, 2)) * np.sqrt(1.0 / mass)[:, None]
     dof = 2 * n
     if n >= 2:
         vel -= (mass @ vel) / mass.sum()
-        if momentum_conserved:
-            dof = 2 * n - 2
+        dof = 2 * n - conserved_axes
     twice_ke = float(np.sum(mass[:, None] * vel**2))
     if twice_ke > 0 and dof > 0:
         vel *= math.sqrt(temperature * dof / twice_ke)

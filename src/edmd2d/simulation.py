@@ -517,9 +517,9 @@ class Simulation:
     def measure(self, duration: float, **kwargs):
         """Run for ``duration`` and return the measurements over that window.
 
-        See :func:`edmd2d.measure.measure` for the quantities and options.
+        See :func:`edmd2d.measurements.measure` for the quantities and options.
         """
-        from .measure import measure
+        from .measurements import measure
 
         return measure(self, duration, **kwargs)
 

@@ -353,12 +353,14 @@ def run(t_end, max_collisions, max_events,
                     S[j, VX] -= impulse * wj * nx
                     S[j, VY] -= impulse * wj * ny
                     acc[A_VIRIAL] += impulse * dist
+                    counts[C_COLLISIONS] += 1
+                    n_coll += 1
+                # (A contact that rounding left not approaching exchanges nothing and is
+                # not counted; both disks are re-predicted all the same.)
                 stamp[i] += 1
                 stamp[j] += 1
                 redo0 = i
                 redo1 = j
-                counts[C_COLLISIONS] += 1
-                n_coll += 1
         elif kind == SEGMENT or kind == BOX:
             if S[i, INVM] == 0.0:
                 info[0] = i

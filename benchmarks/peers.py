@@ -192,16 +192,17 @@ def _pymunk_sample(bodies, masses, diameter: float, box) -> dict:
 
     pos = np.array([tuple(b.position) for b in bodies])
     vel = np.array([tuple(b.velocity) for b in bodies])
-    pairs = np.array(sorted(cKDTree(pos).query_pairs(0.99 * diameter)), dtype=np.int64)
-    depth = 0.0
+    pairs = np.array(sorted(cKDTree(pos).query_pairs(diameter)), dtype=np.int64)
+    dist = np.zeros(0)
     if len(pairs):
         dist = np.linalg.norm(pos[pairs[:, 0]] - pos[pairs[:, 1]], axis=1)
-        depth = float(1.0 - dist.min() / diameter)
+    depth = float(1.0 - dist.min() / diameter) if len(dist) else 0.0
     outside = int(np.sum((pos[:, 0] < 0) | (pos[:, 0] > box.width)
                          | (pos[:, 1] < 0) | (pos[:, 1] > box.height)))
     return {
-        "overlapping_pairs": len(pairs),
-        "deepest_overlap": depth,
+        "overlapping_pairs": int(np.sum(dist < 0.99 * diameter)),
+        "touching_or_overlapping_pairs": len(dist),
+        "deepest_overlap": max(depth, 0.0),
         "outside_box": outside,
         "kinetic_energy": float(0.5 * np.sum(masses[:, None] * vel**2)),
     }
@@ -247,6 +248,8 @@ def vs_pymunk(n: int, packing: float, *, steps_per_free_time: int, seconds: floa
         "overlapping_pairs_mean": float(np.mean(pairs)),
         "overlapping_pairs_max": int(np.max(pairs)),
         "overlapping_pairs_per_disk": float(np.mean(pairs)) / n,
+        "pairs_closer_than_diameter_mean": float(np.mean(
+            [s["touching_or_overlapping_pairs"] for s in sampled])),
         "deepest_overlap": max(s["deepest_overlap"] for s in sampled),
         "outside_box_max": max(s["outside_box"] for s in sampled),
         "kinetic_energy_drift": sampled[-1]["kinetic_energy"] / ke0 - 1.0,

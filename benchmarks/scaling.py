@@ -53,6 +53,7 @@ MODES = {
         "packings": [0.1, 0.3, 0.5, 0.7],
         "repeats": 3,
         "seconds": 0.25,
+        "retries": 3,
         "equilibrate": 5,
         "memory_sizes": [10_000, 100_000],
         "reference_sizes": [50, 100],
@@ -66,6 +67,7 @@ MODES = {
         "packings": [0.1, 0.3, 0.5, 0.7],
         "repeats": 5,
         "seconds": 2.0,
+        "retries": 5,
         "equilibrate": 5,
         "memory_sizes": [10_000, 100_000, 1_000_000],
         "reference_sizes": [50, 100, 200, 400],
@@ -85,7 +87,7 @@ BYTES_PER_DISK_BUDGET = 1024
 def main(argv=None) -> int:
     args = _parse(argv)
     cfg = dict(MODES[args.mode])
-    for key in ("sizes", "packings", "repeats", "seconds", "equilibrate"):
+    for key in ("sizes", "packings", "repeats", "seconds", "retries", "equilibrate"):
         value = getattr(args, key)
         if value is not None:
             cfg[key] = value
@@ -129,6 +131,9 @@ def _parse(argv):
     ap.add_argument("--packings", type=_floats, help="comma-separated packing fractions")
     ap.add_argument("--repeats", type=int, help="timed runs per point")
     ap.add_argument("--seconds", type=float, help="target seconds per timed run")
+    ap.add_argument("--retries", type=int,
+                    help="timed runs per point that may be redone when the process "
+                         "waited for a core")
     ap.add_argument("--equilibrate", type=float, help="untimed collisions per disk first")
     ap.add_argument("--no-peers", action="store_true", help="skip the peer comparisons")
     ap.add_argument("--no-memory", action="store_true", help="skip the memory probes")
@@ -164,10 +169,11 @@ def measure_point(n: int, packing: float, cfg: dict) -> dict:
     build_s = time.perf_counter() - t0
     eq = time_advance(sim, max(1, int(cfg["equilibrate"] * n)))
     rate_guess = eq["collisions"] / eq["seconds"]
-    runs = time_engine(sim, seconds=cfg["seconds"], repeats=cfg["repeats"],
-                       rate_guess=rate_guess)
+    runs, redone = time_engine(sim, seconds=cfg["seconds"], repeats=cfg["repeats"],
+                               rate_guess=rate_guess, retries=cfg["retries"])
     point = {"n": n, "packing": packing, "build_s": build_s, "equilibration": eq}
     point.update(summarize_runs(runs, n))
+    point["runs_redone_busy"] = redone
     point["engine_array_bytes_per_disk"] = engine_array_bytes(sim) / n
     point["runs"] = runs
     return point
@@ -190,7 +196,8 @@ def sweep(cfg: dict) -> list[dict]:
                   f"{p['engine_array_bytes_per_disk']:5.0f} B/disk  "
                   f"[build {p['build_s']:.2f} s, equilibrate {p['equilibration']['seconds']:.2f}"
                   f" s, {p['collisions_per_disk_per_run']:.3g} coll/disk per run]"
-                  + (f"  cpu share {p['cpu_share_min']:.2f}" if p["cpu_share_min"] < 0.95 else ""),
+                  + (f"  cpu share {p['cpu_share_min']:.2f}" if p["cpu_share_min"] < 0.95 else "")
+                  + (f", {p['runs_redone_busy']} redone" if p["runs_redone_busy"] else ""),
                   flush=True)
             points.append(p)
     return points

@@ -31,6 +31,17 @@ def test_readme_example_runs():
     assert namespace["sim"].counts.collisions >= 10
 
 
+def test_readme_measuring_example_runs(capsys):
+    text = (ROOT / "README.md").read_text()
+    block = next(b for b in re.findall(r"```python\n(.*?)```", text, re.S) if "measure(" in b)
+    namespace: dict = {}
+    exec(compile(block, "README.md", "exec"), namespace)
+    m = namespace["m"]
+    # The README quotes Z = 4.10 +- 0.01 for this run; Henderson's 4.125 is within 3%.
+    assert abs(m.compressibility_factor - 4.125) < 0.12
+    assert "compressibility" in capsys.readouterr().out
+
+
 def test_viz_is_lazy():
     # ``import edmd2d`` must not import matplotlib; ``edmd2d.viz`` loads it on demand.
     import subprocess

@@ -71,16 +71,16 @@ def per_disk(name: str, value, n: int, *, allow_inf: bool = False) -> np.ndarray
     return as_float_array(name, value, (n,), allow_inf=allow_inf)
 
 
-def as_count(name: str, value) -> int:
-    """A non-negative integer (a number of collisions, disks, frames...)."""
+def as_count(name: str, value, minimum: int = 0) -> int:
+    """An integer >= ``minimum`` (a number of collisions, disks, frames...)."""
     if isinstance(value, bool) or not isinstance(value, (numbers.Integral, np.integer)):
         if isinstance(value, (float, np.floating)) and float(value).is_integer():
             value = int(value)
         else:
             raise TypeError(f"{name} must be an integer, got {type(value).__name__} {value!r}")
     value = int(value)
-    if value < 0:
-        raise ValueError(f"{name} must be >= 0, got {value}")
+    if value < minimum:
+        raise ValueError(f"{name} must be >= {minimum}, got {value}")
     return value
 
 

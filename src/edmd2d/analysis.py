@@ -145,9 +145,7 @@ def radial_distribution(source, box: Box | None = None, *, r_max: float | None =
     True
     """
     frames, box, radii = _positions_and_box(source, box)
-    bins = as_count("bins", bins)
-    if bins < 1:
-        raise ValueError("bins must be >= 1, got 0")
+    bins = as_count("bins", bins, minimum=1)
     if margin is None:
         margin = float(radii.min()) if radii is not None else 0.0
     else:
@@ -245,9 +243,7 @@ def speed_distribution(source, *, bins: int = 50, v_max: float | None = None):
     ([0.5, 1.5], [0.0, 1.0])
     """
     vel, _ = _velocities_and_masses(source, None)
-    bins = as_count("bins", bins)
-    if bins < 1:
-        raise ValueError("bins must be >= 1, got 0")
+    bins = as_count("bins", bins, minimum=1)
     speed = np.hypot(vel[:, 0], vel[:, 1])
     if v_max is None:
         v_max = float(speed.max()) if speed.max() > 0 else 1.0
@@ -336,9 +332,7 @@ def trajectory(sim, interval: float, frames: int):
     if not isinstance(sim, _simulation_type()):
         raise TypeError(f"trajectory() needs an edmd2d.Simulation, got {type(sim).__name__}")
     interval = as_positive_float("interval", interval)
-    frames = as_count("frames", frames)
-    if frames < 1:
-        raise ValueError("frames must be >= 1, got 0")
+    frames = as_count("frames", frames, minimum=1)
     t0 = sim.time
     times = t0 + interval * np.arange(frames)
     out = np.empty((frames, len(sim), 2))

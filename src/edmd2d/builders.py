@@ -87,9 +87,7 @@ def make_gas(
     >>> round(sim.kinetic_energy() / (2 * 400 - 2), 12)  # E / (2N - 2) = k T / 2
     0.5
     """
-    if isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n < 1:
-        raise ValueError(f"n must be >= 1, got {n}")
-    n = as_count("n", n)
+    n = as_count("n", n, minimum=1)
     phi = as_positive_float("packing_fraction", packing_fraction)
     aspect = as_positive_float("aspect", aspect)
     temperature = as_positive_float("temperature", temperature, allow_zero=True)

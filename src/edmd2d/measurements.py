@@ -258,9 +258,7 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
     if not isinstance(sim, Simulation):
         raise TypeError(f"measure() needs an edmd2d.Simulation, got {type(sim).__name__}")
     duration = as_positive_float("duration", duration)
-    blocks = as_count("blocks", blocks)
-    if blocks < 1:
-        raise ValueError("blocks must be >= 1, got 0")
+    blocks = as_count("blocks", blocks, minimum=1)
 
     box = sim.box
     area = box.area

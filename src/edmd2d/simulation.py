@@ -183,7 +183,9 @@ class Simulation:
         self._time = float(t0)
         idx = np.int32
         self._stamp = np.zeros(n, idx)
-        self._image = np.zeros((n, 2), idx)
+        # Image counters stay int64: a fast disk in a small periodic box can wrap more
+        # than 2^31 times in a long run.
+        self._image = np.zeros((n, 2), np.int64)
         self._cell = np.empty(n, idx)
         self._head = np.empty(ncx * ncy, idx)
         self._nxt = np.empty(n, idx)

@@ -189,7 +189,7 @@ def morton_rank(ncx: int, ncy: int) -> np.ndarray:
     cy = np.arange(ncy, dtype=np.uint64)
     key = _spread_bits(cx)[None, :] | (_spread_bits(cy)[:, None] << np.uint64(1))
     order = np.argsort(key.ravel(), kind="stable")  # cell index cx + ncx * cy
-    rank = np.empty(ncx * ncy, np.int64)
+    rank = np.empty(ncx * ncy, np.int32)
     rank[order] = np.arange(ncx * ncy)
     return rank
 

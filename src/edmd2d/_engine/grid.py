@@ -165,7 +165,7 @@ def bucket_walls(wa, wb, gi, gf, reach):
     it meets.
     """
     ncell = int(gi[0] * gi[1])
-    start = np.zeros(ncell + 1, dtype=np.int64)
+    start = np.zeros(ncell + 1, dtype=np.int32)  # per cell: keep it small
     empty = np.zeros(0, dtype=np.int64)
     _bucket_walls(wa, wb, gi, gf, reach, start, empty, empty, empty, False)
     np.cumsum(start, out=start)

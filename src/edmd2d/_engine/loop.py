@@ -105,6 +105,8 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
 @njit(inline="always")
 def _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy, best, partner, aux):
     """Earliest contact with the wall segments listed for cell ``c``, if before ``best``."""
+    if wa.shape[0] == 0:  # no segments: spare the bucket lookup (a cache miss at large N)
+        return best, partner, aux
     for k in range(wstart[c], wstart[c + 1]):
         w = wwall[k]
         shx = wsx[k] * gf[0]

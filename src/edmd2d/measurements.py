@@ -56,6 +56,12 @@ class Measurement:
         ``1/(2t)`` is ``1/(d t)`` with ``d = 2`` dimensions.)  In a fully periodic box
         this is the bulk pressure.  In a box with walls it is the virial pressure of
         the whole box, which includes the walls' share (see ``wall_pressure``).
+    pressure_xx, pressure_yy : float
+        Diagonal of the pressure tensor, ``P_aa A = N kT_a + sum J |r_ij| n_a^2 / t``
+        with ``n`` the unit contact normal and ``kT_a`` the kinetic temperature of the
+        ``a`` components alone (``(sum m v_a^2 - P_a^2 / M) / (N - c_a)``, ``c_a = 1`` if
+        that momentum component is conserved).  Their mean is ``pressure`` (up to the
+        split of the kinetic part); they differ in anisotropic systems such as a channel.
     compressibility_factor, compressibility_factor_error : float
         ``Z = P A / (N kT) = 1 + sum J |r_ij| / (2 t N kT)``.
     collision_rate, collision_rate_error : float
@@ -87,6 +93,8 @@ class Measurement:
     temperature: float
     pressure: float
     pressure_error: float
+    pressure_xx: float
+    pressure_yy: float
     compressibility_factor: float
     compressibility_factor_error: float
     collision_rate: float
@@ -275,6 +283,7 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
     counts0 = sim.counts
     edges_acc = [acc0]
     temps = [kinetic_temperature(sim)]
+    axis_temps = [_axis_temperatures(sim, movable)]
     speeds = [_mean_speed(sim, movable)]
     coll = [counts0.collisions]
     for b in range(1, blocks + 1):
@@ -282,11 +291,14 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
         sim.advance(until=t_end)
         edges_acc.append(sim._accumulators())
         temps.append(kinetic_temperature(sim))
+        axis_temps.append(_axis_temperatures(sim, movable))
         speeds.append(_mean_speed(sim, movable))
         coll.append(sim.counts.collisions)
     tau = duration / blocks
 
     virial = np.diff([a["virial"] for a in edges_acc])
+    virial_axes = np.array([edges_acc[-1][k] - acc0[k] for k in ("virial_xx", "virial_yy")])
+    kt_axes = np.mean(np.array(axis_temps), axis=0)
     box_imp = np.diff(np.array([a["box_impulse"] for a in edges_acc]), axis=0)
     seg_imp = edges_acc[-1]["segment_impulse"] - acc0["segment_impulse"]
     temps = np.array(temps)
@@ -300,6 +312,7 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
         rate_block = 2.0 * n_coll / (n_all * tau)
         pressure = (n * kt + float(virial.sum()) / (2.0 * duration)) / area
         z = pressure * area / (n * kt) if kt > 0 else math.nan
+        p_axes = (n * kt_axes + virial_axes / duration) / area
         rate = 2.0 * float(n_coll.sum()) / (n_all * duration)
         rate_err = _stderr(rate_block)
         mft = 1.0 / rate if rate > 0 else math.inf
@@ -323,6 +336,8 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
         temperature=kt,
         pressure=float(pressure),
         pressure_error=_stderr(p_block),
+        pressure_xx=float(p_axes[0]),
+        pressure_yy=float(p_axes[1]),
         compressibility_factor=float(z),
         compressibility_factor_error=_stderr(z_block),
         collision_rate=rate,
@@ -336,6 +351,20 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
         box_wall_pressures=tuple(float(p) if w else math.nan for p, w in zip(per_wall, walled)),
         segment_force=float(seg_imp / duration),
     )
+
+
+def _axis_temperatures(sim, movable: np.ndarray) -> np.ndarray:
+    """``kT_x, kT_y``: the kinetic temperature of each velocity component alone."""
+    _, conserved = degrees_of_freedom(sim)
+    m = sim.masses[movable]
+    v = sim.velocities[movable]
+    out = np.full(2, math.nan)
+    for a in range(2):
+        dof = len(m) - int(conserved[a])
+        if dof > 0:
+            p = float(m @ v[:, a])
+            out[a] = (float(m @ v[:, a] ** 2) - (p * p / m.sum() if conserved[a] else 0.0)) / dof
+    return out
 
 
 def _mean_speed(sim, movable: np.ndarray) -> float:

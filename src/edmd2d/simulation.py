@@ -527,10 +527,14 @@ class Simulation:
 
     # ------------------------------------------------------------------ hooks
     def _accumulators(self) -> dict:
-        """Raw sums since creation: the collision virial ``sum J |r_ij|`` and impulses."""
+        """Raw sums since creation: the collision virial ``sum J |r_ij|``, its diagonal
+        components ``sum J |r_ij| n_x^2`` and ``n_y^2`` (``n`` the contact normal), and the
+        impulses on the box walls and on the wall segments."""
         a = self._acc
         return {
             "virial": float(a[_loop.A_VIRIAL]),
+            "virial_xx": float(a[_loop.A_VIRIAL_XX]),
+            "virial_yy": float(a[_loop.A_VIRIAL_YY]),
             "box_impulse": a[_loop.A_BOX:_loop.A_BOX + 4].copy(),
             "segment_impulse": float(a[_loop.A_SEGMENTS]),
         }

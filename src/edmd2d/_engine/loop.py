@@ -54,11 +54,14 @@ C_STALE = 3
 N_COUNTS = 4
 
 # Accumulators (acc[...]): sum of J*|r_ij| over disk collisions (collision virial), the
-# impulse delivered to each box wall (x=0, x=W, y=0, y=H) and to all wall segments.
+# impulse delivered to each box wall (x=0, x=W, y=0, y=H) and to all wall segments, and
+# the diagonal of the virial tensor, sum J |r_ij| n_x^2 and sum J |r_ij| n_y^2.
 A_VIRIAL = 0
 A_BOX = 1  # 1..4
 A_SEGMENTS = 5
-N_ACC = 6
+A_VIRIAL_XX = 6
+A_VIRIAL_YY = 7
+N_ACC = 8
 
 # Status codes returned by run()
 REACHED_TIME = 0
@@ -354,7 +357,10 @@ def run(t_end, max_collisions, max_events,
                     S[i, VY] += impulse * wi * ny
                     S[j, VX] -= impulse * wj * nx
                     S[j, VY] -= impulse * wj * ny
-                    acc[A_VIRIAL] += impulse * dist
+                    jr = impulse * dist
+                    acc[A_VIRIAL] += jr
+                    acc[A_VIRIAL_XX] += jr * nx * nx
+                    acc[A_VIRIAL_YY] += jr * ny * ny
                     counts[C_COLLISIONS] += 1
                     n_coll += 1
                 # (A contact that rounding left not approaching exchanges nothing and is

@@ -80,6 +80,12 @@ def markdown(results: dict) -> str:
                f"Python {meta['python']}, numba {meta['numba']}, numpy {meta['numpy']}, "
                f"edmd2d commit {meta['commit']}{_dirty(meta)}; "
                f"load average before/after {meta['load_before']:.2f}/{meta['load_after']:.2f}.")
+    end = (meta.get("commit_end", meta["commit"]), meta.get("uncommitted_end", []))
+    if end != (meta["commit"], meta.get("uncommitted", [])):
+        out.append(f"The engine changed during this run (at the end: commit {end[0]}"
+                   f"{_dirty({'uncommitted': end[1]})}): the sweep and the peers ran the code "
+                   "imported at the start, the compile and memory probes (fresh processes) "
+                   "the code of their time.")
     points = results["scaling"]
     if points:
         shares = sorted(r["cpu_share"] for p in points for r in p["runs"])

@@ -2,8 +2,8 @@
 
 Run from the repository root::
 
-    python benchmarks/scaling.py --quick     # about 2-3 minutes: N up to 10^5
-    python benchmarks/scaling.py             # about 15-25 minutes: N up to 10^6
+    python benchmarks/scaling.py --quick     # about 1 minute: N up to 10^5
+    python benchmarks/scaling.py             # about 10 minutes: N up to 10^6
 
 Options narrow a run while developing, e.g.
 ``--sizes 10000 --packings 0.5 --no-peers --no-memory --no-compile``.
@@ -112,6 +112,11 @@ def main(argv=None) -> int:
         results["peers"] = compare(cfg)
 
     results["meta"]["load_after"] = os.getloadavg()[0]
+    # Others may commit engine changes while the suite runs: the sweep and the peers
+    # use the code imported at the start, the fresh-process probes the code of their time.
+    results["meta"]["commit_end"] = _git("rev-parse", "--short", "HEAD")
+    results["meta"]["uncommitted_end"] = _git("status", "--porcelain", "--",
+                                              "../src/edmd2d").splitlines()
     results["meta"]["suite_seconds"] = time.perf_counter() - t_start
     report.write_json(results, stem.with_suffix(".json"))
     report.plot(results, stem.with_suffix(".png"))
@@ -126,7 +131,7 @@ def main(argv=None) -> int:
 def _parse(argv):
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--quick", dest="mode", action="store_const", const="quick",
-                    default="full", help="small sizes and short runs (~2-3 min)")
+                    default="full", help="small sizes and short runs (~1 min)")
     ap.add_argument("--sizes", type=_ints, help="comma-separated N, e.g. 1000,10000")
     ap.add_argument("--packings", type=_floats, help="comma-separated packing fractions")
     ap.add_argument("--repeats", type=int, help="timed runs per point")

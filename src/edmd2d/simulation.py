@@ -386,10 +386,11 @@ class Simulation:
             self._time = float(out[0])
             remaining -= int(self._counts[_loop.C_COLLISIONS]) - before
             self._since_reorder += self._processed_events() - events_before
+            if status != _loop.REACHED_EVENT_LIMIT:
+                # (No reordering here: an error below names disks by internal index.)
+                break
             if self._since_reorder >= self._reorder_every:
                 self._reorder()
-            if status != _loop.REACHED_EVENT_LIMIT:
-                break
         if status in (_loop.REACHED_TIME, _loop.NO_EVENTS) and until is not None:
             self._time = t_end
             return self

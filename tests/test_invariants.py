@@ -144,3 +144,42 @@ def test_very_fast_disks_in_a_gas_do_not_tunnel():
     for t in (1e-6, 1e-5, 1e-4):
         sim.advance(until=t)
         assert_no_overlap(sim)
+
+
+def test_interrupt_as_the_engine_returns_keeps_the_clock_consistent(monkeypatch):
+    # Ctrl-C lands in Python right after the compiled loop returns.  The clock must
+    # follow the processed events, or positions would be extrapolated backwards.
+    from edmd2d._engine import loop
+
+    sim = ed.make_gas(2000, 0.5, seed=31)
+    real_run = loop.run
+
+    def interrupted_run(*args):
+        real_run(*args)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(loop, "run", interrupted_run)
+    with pytest.raises(KeyboardInterrupt):
+        sim.advance(collisions=50_000)
+    monkeypatch.setattr(loop, "run", real_run)
+    assert 0 < sim.counts.collisions <= 50_000  # the first engine call ran, then Ctrl-C
+    assert sim.time == pytest.approx(sim._S[:, loop.T].max(), abs=0)
+    assert_no_overlap(sim)
+    sim.advance(until=sim.time + 1.0)
+    assert_no_overlap(sim)
+
+
+def test_queue_order_after_reordering_includes_ties():
+    # Large systems are re-sorted in memory every 20 N events; the queue is rebuilt so
+    # that (time, internal index) order holds exactly, ties included (the two disks of a
+    # predicted collision share its time).  Re-sort far more often here.
+    sim = ed.make_gas(1500, 0.6, seed=32)
+    sim._reorder_every = 997
+    for step in range(1, 41):
+        sim.advance(until=0.05 * step)
+        hkey, hval, where = sim._hkey, sim._hval, sim._where
+        assert (where[hval] == np.arange(len(hval))).all()
+        k = np.arange(1, len(hkey))
+        parent = (k - 1) // 4
+        ok = (hkey[parent] < hkey[k]) | ((hkey[parent] == hkey[k]) & (hval[parent] < hval[k]))
+        assert ok.all(), f"heap order broken after step {step}"

@@ -11,6 +11,7 @@ import numpy as np
 from ._engine import grid as _grid
 from ._engine import loop as _loop
 from ._engine import overlap as _overlap
+from ._engine import queue as _queue
 from ._validate import as_count, as_float_array, indices_where, per_disk
 from .geometry import Box, Wall
 
@@ -89,7 +90,8 @@ class Simulation:
         The clock at the given state.
     cell_size : float, optional
         Side of the grid cells (advanced).  Must be at least the largest diameter;
-        the default picks about one cell per disk, never below that bound.
+        the default is that bound, widened in dilute systems to keep at most about
+        two cells per disk.
 
     Raises
     ------
@@ -170,7 +172,7 @@ class Simulation:
         self._gf = np.array([width, height, width / ncx, height / ncy], np.float64)
 
         # Per-disk state, one 64-byte row each (see _engine/loop.py for the columns).
-        state = np.empty((n, _loop.N_STATE), np.float64)
+        state = _aligned_rows(n)
         state[:, _loop.X:_loop.Y + 1] = pos
         state[:, _loop.VX:_loop.VY + 1] = vel
         state[:, _loop.T] = float(t0)
@@ -291,25 +293,34 @@ class Simulation:
         return int(c[_loop.C_COLLISIONS] + c[_loop.C_WALL] + c[_loop.C_CROSSINGS])
 
     def _reorder(self) -> None:
-        """Re-sort the internal rows along the Z-order of their cells (see module top)."""
+        """Re-sort the internal rows along the Z-order of their cells (see module top).
+
+        Every new array is built first and all are swapped in by one statement, so an
+        interrupt cannot leave them half permuted.  The queue is rebuilt rather than
+        renumbered, which keeps its tie order (time, then internal index) exact.
+        """
         perm = _grid.order_by_cell(self._cell, self._cell_rank, len(self._cell_rank))
         inv = np.empty_like(perm)
         inv[perm] = np.arange(len(perm))
-        self._S = self._S[perm]
-        self._mass = self._mass[perm]
-        self._order = self._order[perm]
-        self._stamp = self._stamp[perm]
-        self._image = self._image[perm]
-        self._cell = self._cell[perm]
-        for events in ("_ev_i", "_nc_i"):
-            ev = getattr(self, events)[perm]
+        state = _aligned_rows(len(perm))
+        state[:] = self._S[perm]
+        events = []
+        for ev in (self._ev_i, self._nc_i):
+            ev = ev[perm]
             disk = ev[:, 0] == _loop.DISK
             ev[disk, 1] = inv[ev[disk, 1]]
-            setattr(self, events, ev)
-        self._hval = inv[self._hval].astype(self._hval.dtype)
-        self._where = self._where[perm]
-        _grid.build_lists(self._cell, self._head, self._nxt, self._prv)
-        self._since_reorder = 0
+            events.append(ev)
+        cell = self._cell[perm]
+        head, nxt, prv = (np.empty_like(a) for a in (self._head, self._nxt, self._prv))
+        _grid.build_lists(cell, head, nxt, prv)
+        hkey, hval, where = (np.empty_like(a) for a in (self._hkey, self._hval, self._where))
+        _queue.build(hkey, hval, where, self._hkey[self._where][perm])
+        (self._S, self._mass, self._order, self._stamp, self._image, self._cell,
+         self._ev_i, self._nc_i, self._head, self._nxt, self._prv,
+         self._hkey, self._hval, self._where, self._since_reorder) = (
+            state, self._mass[perm], self._order[perm], self._stamp[perm],
+            self._image[perm], cell, events[0], events[1], head, nxt, prv,
+            hkey, hval, where, 0)
 
     def _to_user(self, internal: np.ndarray) -> np.ndarray:
         """Rows in the user's disk order (a new array)."""
@@ -375,17 +386,22 @@ class Simulation:
             before = int(self._counts[_loop.C_COLLISIONS])
             events_before = self._processed_events()
             budget = min(_CHUNK_EVENTS, self._reorder_every - self._since_reorder)
-            status = _loop.run(
-                t_end, remaining, budget,
-                self._S, self._stamp, self._image, *self._grid_args(), self._prv,
-                *self._wall_args(), self._nc_i, self._ev_i, self._hkey, self._hval,
-                self._where,
-                self._counts, self._acc, out, info, self._log_t, self._log_e, self._log_n,
-                self._order,
-            )
-            self._time = float(out[0])
+            try:
+                status = _loop.run(
+                    t_end, remaining, budget,
+                    self._S, self._stamp, self._image, *self._grid_args(), self._prv,
+                    *self._wall_args(), self._nc_i, self._ev_i, self._hkey, self._hval,
+                    self._where,
+                    self._counts, self._acc, out, info, self._log_t, self._log_e,
+                    self._log_n, self._order,
+                )
+            finally:
+                # Also when Ctrl-C arrives as the engine returns: the clock must follow
+                # the events the engine has processed, or positions would be read at a
+                # time earlier than the disks' own.
+                self._time = float(out[0])
+                self._since_reorder += self._processed_events() - events_before
             remaining -= int(self._counts[_loop.C_COLLISIONS]) - before
-            self._since_reorder += self._processed_events() - events_before
             if status != _loop.REACHED_EVENT_LIMIT:
                 # (No reordering here: an error below names disks by internal index.)
                 break
@@ -556,6 +572,15 @@ class Simulation:
              int(self._log_e[m, 1]), int(self._log_e[m, 2]))
             for m in range(k)
         ]
+
+
+def _aligned_rows(n: int) -> np.ndarray:
+    """An uninitialised C-contiguous (n, 8) float64 array whose 64-byte rows start on
+    64-byte boundaries, so that reading one disk's state touches one cache line."""
+    width = _loop.N_STATE
+    buf = np.empty(n * width + width, np.float64)
+    skip = (-buf.ctypes.data % 64) // 8
+    return buf[skip:skip + n * width].reshape(n, width)
 
 
 def _as_walls(walls) -> list[Wall]:

@@ -2,9 +2,10 @@
 
 State layout (struct of arrays, one row per disk):
 
-``S[i] = (x, y, vx, vy, t_local, radius, 1/mass, t_candidate)`` (float64, 64 bytes: one
-cache line), ``stamp[i]`` (int32 invalidation counter), ``ev_i[i] = (kind, partner, aux,
-partner_stamp)`` (int32) the scheduled event, whose time sits in the queue, and
+``S[i] = (x, y, vx, vy, t_local, radius, 1/mass, t_candidate)`` (float64, 64 bytes,
+allocated 64-byte aligned: one cache line), ``stamp[i]`` (int32 invalidation counter),
+``ev_i[i] = (kind, partner, aux, partner_stamp)`` (int32) the scheduled event, whose
+time sits in the queue, and
 ``nc_i[i]`` (with time ``S[i, 7]``) the best candidate that is *not* a cell crossing.
 
 Why one event per disk is enough: a disk's event is the minimum over its candidates.
@@ -361,10 +362,11 @@ def run(t_end, max_collisions, max_events,
                     acc[A_VIRIAL] += jr
                     acc[A_VIRIAL_XX] += jr * nx * nx
                     acc[A_VIRIAL_YY] += jr * ny * ny
-                    counts[C_COLLISIONS] += 1
-                    n_coll += 1
-                # (A contact that rounding left not approaching exchanges nothing and is
-                # not counted; both disks are re-predicted all the same.)
+                # A contact that rounding left not approaching exchanges nothing but is a
+                # processed contact event like any other (as for walls, and as in the
+                # reference): counted, logged, both disks re-predicted.
+                counts[C_COLLISIONS] += 1
+                n_coll += 1
                 stamp[i] += 1
                 stamp[j] += 1
                 redo0 = i

@@ -2,12 +2,14 @@
 
 ``hkey[k]`` is the time at heap slot ``k`` and ``hval[k]`` the disk there; ``where[i]``
 is the slot of disk ``i``.  Keys live in heap order, so the four children of a slot,
-which are compared together, sit next to each other in memory (one cache line) instead
-of being looked up disk by disk; a 4-ary tree is also half as deep as a binary one.
-At N = 10^6 this cut the cost of an update about threefold in our measurements.
+which are compared together, sit next to each other in memory (32 bytes, one or two
+cache lines) instead of being looked up disk by disk; a 4-ary tree is also half as deep
+as a binary one.  At N = 10^6 an update went from 516 to 286 ns in isolation.
 
 Memory is ``N`` keys and ``2N`` indices whatever the run length.  Ties in time are
-broken by the disk index, so the order of simultaneous events is deterministic.
+broken by the engine's internal disk index (the row order, which the Z-order sorting of
+large systems changes), so the order of simultaneous events is deterministic for a
+given run, though not by the user's disk numbering.
 """
 
 from __future__ import annotations
@@ -79,11 +81,6 @@ def set_time(hkey, hval, where, i, t):
     hkey[k] = t
     if sift_up(hkey, hval, where, k) == k:
         sift_down(hkey, hval, where, k)
-
-
-@njit
-def time_of(hkey, where, i):
-    return hkey[where[i]]
 
 
 @njit

@@ -99,6 +99,16 @@ class Simulation:
         For arguments of the wrong type, shape or value, with the indices of the
         offending disks, overlapping pairs, and disks overlapping a wall.
 
+    Notes
+    -----
+    Event times are absolute float64 values and each disk's position is kept at its own
+    last event time.  Contacts are resolved to rounding of the numbers involved, so
+    exactness in practice holds while ``time * speed`` stays well below ~1e7 diameters
+    (a relative precision of 1e-16 on the time, times the distance travelled, must stay
+    far below the grid's 1e-9 diameter margin); an overlap that rounding might leave is
+    repaired at once, since an approaching overlapped pair collides immediately.  Event
+    order among exactly simultaneous events follows the engine's internal row order.
+
     Examples
     --------
     Two disks approaching head-on touch when their gap of 1 closes at relative speed 2:

@@ -298,10 +298,6 @@ class Simulation:
     def _wall_args(self):
         return (self._wa, self._wb, self._wstart, self._wwall, self._wsx, self._wsy)
 
-    def _processed_events(self) -> int:
-        c = self._counts
-        return int(c[_loop.C_COLLISIONS] + c[_loop.C_WALL] + c[_loop.C_CROSSINGS])
-
     def _reorder(self) -> None:
         """Re-sort the internal rows along the Z-order of their cells (see module top).
 
@@ -394,7 +390,7 @@ class Simulation:
         info = np.full(2, -1, np.int64)
         while True:
             before = int(self._counts[_loop.C_COLLISIONS])
-            events_before = self._processed_events()
+            events_before = self.counts.events
             budget = min(_CHUNK_EVENTS, self._reorder_every - self._since_reorder)
             try:
                 status = _loop.run(
@@ -410,7 +406,7 @@ class Simulation:
                 # the events the engine has processed, or positions would be read at a
                 # time earlier than the disks' own.
                 self._time = float(out[0])
-                self._since_reorder += self._processed_events() - events_before
+                self._since_reorder += self.counts.events - events_before
             remaining -= int(self._counts[_loop.C_COLLISIONS]) - before
             if status != _loop.REACHED_EVENT_LIMIT:
                 # (No reordering here: an error below names disks by internal index.)
@@ -534,8 +530,7 @@ class Simulation:
         vel = as_float_array("velocities", velocities, (len(self), 2))
         self._sync_all()
         self._S[:, _loop.VX:_loop.VY + 1] = vel[self._order]
-        self._stamp += 1
-        self._predict_all()
+        self._predict_all()  # every event and kept candidate is recomputed
 
     def _sync_all(self) -> None:
         """Move every stored position to the current time (local clocks all equal)."""

@@ -75,12 +75,10 @@ def remove(i, cell, head, nxt, prv):
 def build_cells(pos, gi, gf, cell, head, nxt, prv):
     """Assign every disk to the cell of its centre and build the lists."""
     ncx = gi[0]
-    ncy = gi[1]
-    head[:] = -1
     for i in range(pos.shape[0]):
-        cx = cell_coord(pos[i, 0], gf[2], ncx)
-        cy = cell_coord(pos[i, 1], gf[3], ncy)
-        insert(i, cx + ncx * cy, cell, head, nxt, prv)
+        cell[i] = (cell_coord(pos[i, 0], gf[2], ncx)
+                   + ncx * cell_coord(pos[i, 1], gf[3], gi[1]))
+    build_lists(cell, head, nxt, prv)
 
 
 @njit(inline="always")

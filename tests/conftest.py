@@ -54,10 +54,11 @@ def random_system(rng, n, box, walls=(), rmin=0.3, rmax=0.6, max_tries=20000):
 
 
 def segment_distance(p, wall):
+    """Distance from point(s) ``p`` (shape (2,) or (N, 2)) to a wall segment."""
     a, b = np.array(wall.start), np.array(wall.end)
     u = b - a
-    s = np.clip((p - a) @ u / (u @ u), 0.0, 1.0)
-    return float(np.hypot(*(p - a - s * u)))
+    s = np.clip((np.asarray(p) - a) @ u / (u @ u), 0.0, 1.0)
+    return np.hypot(*(np.asarray(p) - a - np.multiply.outer(s, u)).T)
 
 
 def overlaps(sim, tol=1e-9):

@@ -7,6 +7,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 import edmd2d as ed
+from conftest import segment_distance
 
 
 def assert_no_overlap(sim, tol=1e-9):
@@ -35,11 +36,7 @@ def assert_no_overlap(sim, tol=1e-9):
         bad = dist < (r[i] + r[j]) * (1 - tol)
         assert not bad.any(), f"overlapping pairs {list(zip(i[bad], j[bad]))[:5]}"
     for w in sim.walls:
-        a, b = np.array(w.start), np.array(w.end)
-        u = b - a
-        s = np.clip((p - a) @ u / (u @ u), 0, 1)
-        dist = np.hypot(*(p - a - s[:, None] * u).T)
-        assert (dist >= r * (1 - tol)).all()
+        assert (segment_distance(p, w) >= r * (1 - tol)).all()
 
 
 @pytest.mark.parametrize("phi", [0.3, 0.7])
@@ -71,10 +68,7 @@ def test_mixture_in_walled_box_with_obstacles():
     p, r = sim0.positions, sim0.radii
     keep = np.ones(len(p), bool)
     for wall in walls:
-        a, b = np.array(wall.start), np.array(wall.end)
-        u = b - a
-        s = np.clip((p - a) @ u / (u @ u), 0, 1)
-        keep &= np.hypot(*(p - a - s[:, None] * u).T) > r * 1.01
+        keep &= segment_distance(p, wall) > r * 1.01
     sim = ed.Simulation(p[keep], sim0.velocities[keep], r[keep], sim0.masses[keep],
                         box=sim0.box, walls=walls)
     e0 = sim.kinetic_energy()

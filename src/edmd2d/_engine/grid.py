@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from .._jit import njit
+from .._jit import kernel, njit
 
 
 @njit(inline="always")
@@ -47,7 +47,7 @@ def cell_coord(x, side, ncell):
     return c
 
 
-@njit
+@kernel
 def insert(i, c, cell, head, nxt, prv):
     cell[i] = c
     h = head[c]
@@ -58,7 +58,7 @@ def insert(i, c, cell, head, nxt, prv):
     head[c] = i
 
 
-@njit
+@kernel
 def remove(i, cell, head, nxt, prv):
     c = cell[i]
     p = prv[i]

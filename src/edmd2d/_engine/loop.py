@@ -31,7 +31,7 @@ import math
 
 import numpy as np
 
-from .._jit import njit
+from .._jit import kernel, njit
 from . import queue
 from .grid import insert, neighbour, remove
 from .predict import INF, box_wall_time, exit_time, pair_time, segment_time
@@ -150,7 +150,7 @@ def _schedule(i, t, x, y, vx, vy, cx, cy, S, gi, gf, nc_i, ev_i):
     return t_cross
 
 
-@njit
+@kernel
 def predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
                  wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i):
     """Full prediction of disk ``i`` from time ``t``: all 9 neighbour cells, its cell's
@@ -203,7 +203,7 @@ def predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
     return _schedule(i, t, x, y, vx, vy, cx, cy, S, gi, gf, nc_i, ev_i)
 
 
-@njit
+@kernel
 def predict_after_crossing(i, t, direction, S, stamp, gi, gf, cell, head, nxt,
                            wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i):
     """Disk ``i`` (at time ``t``, already in its new cell, not wrapped) crossed in
@@ -278,7 +278,7 @@ def _reflect(i, nx, ny, S, acc, slot):
         acc[slot] += -2.0 * vn / S[i, INVM]
 
 
-@njit
+@kernel
 def run(t_end, max_collisions, max_events,
         S, stamp, image, gi, gf, cell, head, nxt, prv,
         wa, wb, wstart, wwall, wsx, wsy,

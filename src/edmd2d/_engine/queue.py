@@ -14,7 +14,7 @@ given run, though not by the user's disk numbering.
 
 from __future__ import annotations
 
-from .._jit import njit
+from .._jit import kernel, njit
 
 
 @njit(inline="always")
@@ -22,7 +22,7 @@ def _before(ka, ia, kb, ib):
     return ka < kb or (ka == kb and ia < ib)
 
 
-@njit
+@kernel
 def sift_up(hkey, hval, where, k):
     """Move the entry at slot ``k`` towards the root while it is earlier than its parent."""
     key = hkey[k]
@@ -42,7 +42,7 @@ def sift_up(hkey, hval, where, k):
     return k
 
 
-@njit
+@kernel
 def sift_down(hkey, hval, where, k):
     """Move the entry at slot ``k`` away from the root while a child is earlier."""
     n = hkey.shape[0]
@@ -74,7 +74,7 @@ def sift_down(hkey, hval, where, k):
     where[i] = k
 
 
-@njit
+@kernel
 def set_time(hkey, hval, where, i, t):
     """Give disk ``i`` the event time ``t`` and restore the heap."""
     k = where[i]

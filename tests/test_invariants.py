@@ -161,19 +161,3 @@ def test_interrupt_as_the_engine_returns_keeps_the_clock_consistent(monkeypatch)
     assert_no_overlap(sim)
     sim.advance(until=sim.time + 1.0)
     assert_no_overlap(sim)
-
-
-def test_queue_order_after_reordering_includes_ties():
-    # Large systems are re-sorted in memory every 20 N events; the queue is rebuilt so
-    # that (time, internal index) order holds exactly, ties included (the two disks of a
-    # predicted collision share its time).  Re-sort far more often here.
-    sim = ed.make_gas(1500, 0.6, seed=32)
-    sim._reorder_every = 997
-    for step in range(1, 41):
-        sim.advance(until=0.05 * step)
-        hkey, hval, where = sim._hkey, sim._hval, sim._where
-        assert (where[hval] == np.arange(len(hval))).all()
-        k = np.arange(1, len(hkey))
-        parent = (k - 1) // 4
-        ok = (hkey[parent] < hkey[k]) | ((hkey[parent] == hkey[k]) & (hval[parent] < hval[k]))
-        assert ok.all(), f"heap order broken after step {step}"

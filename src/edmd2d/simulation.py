@@ -218,9 +218,7 @@ class Simulation:
 
         self._ev_i = np.zeros((n, 4), idx)
         self._nc_i = np.zeros((n, 4), idx)
-        self._hkey = np.empty(n, np.float64)
-        self._hval = np.empty(n, idx)
-        self._where = np.empty(n, idx)
+        self._qt, self._ql, self._hv, self._qhead, self._qs, self._qf = _queue.allocate(n)
         self._counts = np.zeros(_loop.N_COUNTS, np.int64)
         self._acc = np.zeros(_loop.N_ACC, np.float64)
         self._log_t = np.zeros(0)
@@ -298,6 +296,9 @@ class Simulation:
     def _wall_args(self):
         return (self._wa, self._wb, self._wstart, self._wwall, self._wsx, self._wsy)
 
+    def _queue_args(self):
+        return (self._qt, self._ql, self._hv, self._qhead, self._qs, self._qf)
+
     def _reorder(self) -> None:
         """Re-sort the internal rows along the Z-order of their cells (see module top).
 
@@ -319,14 +320,14 @@ class Simulation:
         cell = self._cell[perm]
         head, nxt, prv = (np.empty_like(a) for a in (self._head, self._nxt, self._prv))
         _grid.build_lists(cell, head, nxt, prv)
-        hkey, hval, where = (np.empty_like(a) for a in (self._hkey, self._hval, self._where))
-        _queue.build(hkey, hval, where, self._hkey[self._where][perm])
+        queue = _queue.allocate(len(perm))
+        _queue.build(self._time, self._qt[perm], *queue)
         (self._S, self._mass, self._order, self._stamp, self._image, self._cell,
          self._ev_i, self._nc_i, self._head, self._nxt, self._prv,
-         self._hkey, self._hval, self._where, self._since_reorder) = (
+         (self._qt, self._ql, self._hv, self._qhead, self._qs, self._qf), self._since_reorder) = (
             state, self._mass[perm], self._order[perm], self._stamp[perm],
             self._image[perm], cell, events[0], events[1], head, nxt, prv,
-            hkey, hval, where, 0)
+            queue, 0)
 
     def _to_user(self, internal: np.ndarray) -> np.ndarray:
         """Rows in the user's disk order (a new array)."""
@@ -337,7 +338,7 @@ class Simulation:
     def _predict_all(self) -> None:
         _loop.predict_all(
             self._time, self._S, self._stamp, *self._grid_args(), *self._wall_args(),
-            self._nc_i, self._ev_i, self._hkey, self._hval, self._where,
+            self._nc_i, self._ev_i, *self._queue_args(),
         )
 
     def advance(self, until: float | None = None, collisions: int | None = None) -> Simulation:
@@ -396,8 +397,7 @@ class Simulation:
                 status = _loop.run(
                     t_end, remaining, budget,
                     self._S, self._stamp, self._image, *self._grid_args(), self._prv,
-                    *self._wall_args(), self._nc_i, self._ev_i, self._hkey, self._hval,
-                    self._where,
+                    *self._wall_args(), self._nc_i, self._ev_i, *self._queue_args(),
                     self._counts, self._acc, out, info, self._log_t, self._log_e,
                     self._log_n, self._order,
                 )
@@ -424,7 +424,7 @@ class Simulation:
                 f"{remaining} of the {max_coll} requested collisions cannot occur"
             )
         i, j = int(info[0]), int(info[1])
-        t_bad = float(self._hkey[self._where[i]])
+        t_bad = float(self._qt[i])
         i = int(self._order[i])
         if status == _loop.ERR_IMMOVABLE_PAIR:
             j = int(self._order[j])

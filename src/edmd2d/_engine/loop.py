@@ -5,7 +5,7 @@ State layout (struct of arrays, one row per disk):
 ``S[i] = (x, y, vx, vy, t_local, radius, 1/mass, t_candidate)`` (float64, 64 bytes,
 allocated 64-byte aligned: one cache line), ``stamp[i]`` (int32 invalidation counter),
 ``ev_i[i] = (kind, partner, aux, partner_stamp)`` (int32) the scheduled event, whose
-time sits in the queue, and
+time sits in the calendar queue (queue.py), and
 ``nc_i[i]`` (with time ``S[i, 7]``) the best candidate that is *not* a cell crossing.
 
 Why one event per disk is enough: a disk's event is the minimum over its candidates.
@@ -251,13 +251,13 @@ def predict_after_crossing(i, t, direction, S, stamp, gi, gf, cell, head, nxt,
 
 @njit
 def predict_all(t, S, stamp, gi, gf, cell, head, nxt,
-                wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i, hkey, hval, where):
+                wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i, qt, ql, hv, qhead, qs, qf):
     """Predict every disk's next event from time ``t`` and rebuild the queue."""
     times = np.empty(S.shape[0])
     for i in range(S.shape[0]):
         times[i] = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
                                 wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
-    queue.build(hkey, hval, where, times)
+    queue.build(t, times, qt, ql, hv, qhead, qs, qf)
 
 
 @njit(inline="always")
@@ -282,7 +282,7 @@ def _reflect(i, nx, ny, S, acc, slot):
 def run(t_end, max_collisions, max_events,
         S, stamp, image, gi, gf, cell, head, nxt, prv,
         wa, wb, wstart, wwall, wsx, wsy,
-        nc_i, ev_i, hkey, hval, where,
+        nc_i, ev_i, qt, ql, hv, qhead, qs, qf,
         counts, acc, out, info, log_t, log_e, log_n, order):
     """Process events in time order.
 
@@ -306,11 +306,11 @@ def run(t_end, max_collisions, max_events,
     n_ev = 0
     status = REACHED_TIME
     while True:
-        i = hval[0]
-        t = hkey[0]
-        if t == INF:
+        i = queue.top(qt, ql, hv, qhead, qs, qf)
+        if i < 0:
             status = NO_EVENTS
             break
+        t = qt[i]
         if t > t_end:
             status = REACHED_TIME
             break
@@ -465,7 +465,7 @@ def run(t_end, max_collisions, max_events,
                 if t_new < 0.0:
                     redo0 = i
                 else:
-                    queue.set_time(hkey, hval, where, i, t_new)
+                    queue.set_time(i, t_new, qt, ql, hv, qhead, qs, qf)
             counts[C_CROSSINGS] += 1
 
         for k in range(2):
@@ -473,7 +473,7 @@ def run(t_end, max_collisions, max_events,
             if d >= 0:
                 t_new = predict_disk(d, t, S, stamp, gi, gf, cell, head, nxt,
                                      wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
-                queue.set_time(hkey, hval, where, d, t_new)
+                queue.set_time(d, t_new, qt, ql, hv, qhead, qs, qf)
         if stale:
             counts[C_STALE] += 1
             continue

@@ -1,96 +1,321 @@
-"""Indexed 4-ary min-heap holding exactly one scheduled event time per disk.
+"""Calendar queue (after Paul 2007) holding exactly one scheduled event time per disk.
 
-``hkey[k]`` is the time at heap slot ``k`` and ``hval[k]`` the disk there; ``where[i]``
-is the slot of disk ``i``.  Keys live in heap order, so the four children of a slot,
-which are compared together, sit next to each other in memory (32 bytes, one or two
-cache lines) instead of being looked up disk by disk; a 4-ary tree is also half as deep
-as a binary one.  At N = 10^6 an update went from 516 to 286 ns in isolation.
+Time is cut into buckets of width ``1 / qf[INVW]`` counted from ``qf[ORIGIN]``: an event
+at time ``t`` belongs to bucket ``floor((t - origin) * invw)``.  The buckets of the
+current *year*, ``qs[CUR] <= b < qs[CUR] + nb`` with ``nb`` a power of two, are ``nb``
+unsorted doubly linked lists (list ``b mod nb``); later events wait in one overflow
+list.  Only the current bucket is kept sorted, as a small binary heap.  Inserting or
+removing an event is then O(1) (a list link, or a heap of a few entries) instead of a
+walk down a heap of ``N`` entries: at N = 10^4 the 4-ary heap this replaces took 28% of
+the run time, mostly mispredicted branches, and at N = 10^6 also cache misses.
 
-Memory is ``N`` keys and ``2N`` indices whatever the run length.  Ties in time are
-broken by the engine's internal disk index (the row order, which the Z-order sorting of
-large systems changes), so the order of simultaneous events is deterministic for a
-given run, though not by the user's disk numbering.
+The order of events is exact: buckets partition time, and inside the current bucket
+the heap orders by ``(time, disk index)``, the same tie rule as before, so simultaneous
+events keep a deterministic order.  Bucket numbers come from one monotonic float
+expression, so an earlier time never lands in a later bucket.
+
+Arrays (``N`` disks):
+
+``qt[i]``
+    the scheduled time of disk ``i`` (``inf``: nothing scheduled, not queued);
+``ql[i, NEXT]``, ``ql[i, PREV]``, ``ql[i, LOC]`` (int32 columns of a per-disk table)
+    ``NEXT``/``PREV`` link ``i`` in its bucket list; ``LOC`` is ``i``'s slot in the
+    heap if ``>= 0``, ``-1`` if not queued, or ``-2 - list`` if in list ``list``
+    (``nb`` is the overflow list);
+``hv[k]`` (int32)
+    the heap of the current bucket: the disk at slot ``k``;
+``qhead[nb + 1]``
+    the first disk of each list (``-1``: empty);
+``qs`` (int64) and ``qf`` (float64)
+    the scalars below.
+
+The bucket width adapts: it is chosen at :func:`build` from the median time to the
+next event, and whenever about two years' worth of operations show the buckets holding
+on average more than 8x or less than 1/8x the target of two events, every queued event
+is re-placed with a width scaled to match (O(N), amortised over at least ``2 nb``
+operations).  When the heap and all lists of the year are empty the calendar jumps:
+it restarts at the earliest overflow event instead of stepping through empty buckets.
 """
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
+
 from .._jit import kernel, njit
+
+INF = math.inf
+
+# Columns of ql
+NEXT, PREV, LOC = 0, 1, 2
+N_QL = 3
+# qs: current bucket, heap size, events in the year's lists, events in overflow,
+# nb - 1, bucket at which the overflow is next scanned, heap insertions and bucket
+# steps since the bucket width was last checked.
+CUR, NHEAP, NLIST, NOVER, MASK, BOUNDARY, LOADED, ADVANCED = range(8)
+N_QS = 8
+# qf: time origin of bucket 0, inverse bucket width
+ORIGIN, INVW = 0, 1
+N_QF = 2
+
+TARGET_PER_BUCKET = 2.0
+_RETUNE_FACTOR = 8.0
+
+
+def allocate(n):
+    """Arrays for a queue of ``n`` disks: ``(qt, ql, hv, qhead, qs, qf)``."""
+    nb = 16
+    while nb < n:
+        nb *= 2
+    qs = np.zeros(N_QS, np.int64)
+    qs[MASK] = nb - 1
+    qf = np.zeros(N_QF, np.float64)
+    qf[INVW] = 1.0
+    return (np.full(n, INF), np.full((n, N_QL), -1, np.int32), np.full(n, -1, np.int32),
+            np.full(nb + 1, -1, np.int32), qs, qf)
 
 
 @njit(inline="always")
-def _before(ka, ia, kb, ib):
-    return ka < kb or (ka == kb and ia < ib)
+def _before(qt, a, b):
+    ta = qt[a]
+    tb = qt[b]
+    return ta < tb or (ta == tb and a < b)
 
 
-@kernel
-def sift_up(hkey, hval, where, k):
-    """Move the entry at slot ``k`` towards the root while it is earlier than its parent."""
-    key = hkey[k]
-    i = hval[k]
+@njit(inline="always")
+def _sift_up(qt, ql, hv, k):
+    """Move the heap entry at slot ``k`` up while earlier than its parent; its slot."""
+    i = hv[k]
     while k > 0:
-        p = (k - 1) >> 2
-        if _before(key, i, hkey[p], hval[p]):
-            hkey[k] = hkey[p]
-            hval[k] = hval[p]
-            where[hval[k]] = k
+        p = (k - 1) >> 1
+        j = hv[p]
+        if _before(qt, i, j):
+            hv[k] = j
+            ql[j, LOC] = k
             k = p
         else:
             break
-    hkey[k] = key
-    hval[k] = i
-    where[i] = k
+    hv[k] = i
+    ql[i, LOC] = k
     return k
 
 
-@kernel
-def sift_down(hkey, hval, where, k):
-    """Move the entry at slot ``k`` away from the root while a child is earlier."""
-    n = hkey.shape[0]
-    key = hkey[k]
-    i = hval[k]
+@njit(inline="always")
+def _sift_down(qt, ql, hv, n, k):
+    """Move the heap entry at slot ``k`` down while a child is earlier."""
+    i = hv[k]
     while True:
-        c = 4 * k + 1
+        c = 2 * k + 1
         if c >= n:
             break
-        best = c
-        bk = hkey[c]
-        bi = hval[c]
-        end = min(c + 4, n)
-        for cc in range(c + 1, end):
-            kk = hkey[cc]
-            if kk < bk or (kk == bk and hval[cc] < bi):
-                best = cc
-                bk = kk
-                bi = hval[cc]
-        if _before(bk, bi, key, i):
-            hkey[k] = bk
-            hval[k] = bi
-            where[bi] = k
-            k = best
+        j = hv[c]
+        if c + 1 < n:
+            j2 = hv[c + 1]
+            if _before(qt, j2, j):
+                c += 1
+                j = j2
+        if _before(qt, j, i):
+            hv[k] = j
+            ql[j, LOC] = k
+            k = c
         else:
             break
-    hkey[k] = key
-    hval[k] = i
-    where[i] = k
+    hv[k] = i
+    ql[i, LOC] = k
+
+
+@njit(inline="always")
+def _heap_push(i, qt, ql, hv, qs):
+    n = qs[NHEAP]
+    hv[n] = i
+    qs[NHEAP] = n + 1
+    qs[LOADED] += 1
+    _sift_up(qt, ql, hv, n)
+
+
+@njit(inline="always")
+def _link(i, lst, ql, qhead):
+    h = qhead[lst]
+    ql[i, NEXT] = h
+    ql[i, PREV] = -1
+    if h >= 0:
+        ql[h, PREV] = i
+    qhead[lst] = i
+    ql[i, LOC] = -2 - lst
+
+
+@njit(inline="always")
+def _place(i, qt, ql, hv, qhead, qs, qf):
+    """Queue disk ``i`` (not queued) at its time ``qt[i]``."""
+    t = qt[i]
+    if t == INF:
+        ql[i, LOC] = -1
+        return
+    x = (t - qf[ORIGIN]) * qf[INVW]
+    cur = qs[CUR]
+    nb = qs[MASK] + 1
+    if x < cur + 1:
+        _heap_push(i, qt, ql, hv, qs)
+    elif x < cur + nb:
+        _link(i, np.int64(x) & qs[MASK], ql, qhead)
+        qs[NLIST] += 1
+    else:
+        _link(i, nb, ql, qhead)
+        qs[NOVER] += 1
+
+
+@njit(inline="always")
+def _take(i, qt, ql, hv, qhead, qs):
+    """Take disk ``i`` out of the queue (wherever it is)."""
+    loc = ql[i, LOC]
+    if loc >= 0:
+        n = qs[NHEAP] - 1
+        qs[NHEAP] = n
+        if loc < n:
+            last = hv[n]
+            hv[loc] = last
+            if _sift_up(qt, ql, hv, loc) == loc:
+                _sift_down(qt, ql, hv, n, loc)
+    elif loc <= -2:
+        lst = -2 - loc
+        p = ql[i, PREV]
+        nx = ql[i, NEXT]
+        if p >= 0:
+            ql[p, NEXT] = nx
+        else:
+            qhead[lst] = nx
+        if nx >= 0:
+            ql[nx, PREV] = p
+        if lst == qs[MASK] + 1:
+            qs[NOVER] -= 1
+        else:
+            qs[NLIST] -= 1
+    ql[i, LOC] = -1
 
 
 @kernel
-def set_time(hkey, hval, where, i, t):
-    """Give disk ``i`` the event time ``t`` and restore the heap."""
-    k = where[i]
-    hkey[k] = t
-    if sift_up(hkey, hval, where, k) == k:
-        sift_down(hkey, hval, where, k)
+def set_time(i, t, qt, ql, hv, qhead, qs, qf):
+    """Give disk ``i`` the event time ``t`` (``inf``: none) and restore the queue."""
+    loc = ql[i, LOC]
+    if loc >= 0 and (t - qf[ORIGIN]) * qf[INVW] < qs[CUR] + 1:
+        # Stays in the current bucket: reposition inside the heap.  (Counted as a
+        # load: with buckets far too wide every event lands here.)
+        qt[i] = t
+        qs[LOADED] += 1
+        if _sift_up(qt, ql, hv, loc) == loc:
+            _sift_down(qt, ql, hv, qs[NHEAP], loc)
+        return
+    _take(i, qt, ql, hv, qhead, qs)
+    qt[i] = t
+    _place(i, qt, ql, hv, qhead, qs, qf)
+
+
+@kernel
+def _replace_all(invw, qt, ql, hv, qhead, qs, qf):
+    """Re-place every queued event with bucket width ``1 / invw``, bucket 0 starting at
+    the earliest of them."""
+    n = qt.shape[0]
+    t0 = INF
+    for i in range(n):
+        if ql[i, LOC] != -1 and qt[i] < t0:
+            t0 = qt[i]
+    for k in range(qhead.shape[0]):
+        qhead[k] = -1
+    qs[NHEAP] = 0
+    qs[NLIST] = 0
+    qs[NOVER] = 0
+    qs[CUR] = 0
+    qs[BOUNDARY] = qs[MASK] + 1
+    qs[LOADED] = 0
+    qs[ADVANCED] = 0
+    qf[ORIGIN] = t0 if t0 < INF else 0.0
+    qf[INVW] = invw
+    for i in range(n):
+        if ql[i, LOC] != -1:
+            ql[i, LOC] = -1
+            _place(i, qt, ql, hv, qhead, qs, qf)
+
+
+@njit(inline="always")
+def _scan_overflow(restart, qt, ql, hv, qhead, qs, qf):
+    """Move the overflow events that now fall inside the year into their lists.  With
+    ``restart`` the calendar first restarts at the earliest of them (bucket 0)."""
+    nb = qs[MASK] + 1
+    chain = qhead[nb]
+    qhead[nb] = -1
+    qs[NOVER] = 0
+    if restart:
+        t0 = INF
+        i = chain
+        while i >= 0:
+            t0 = min(t0, qt[i])
+            i = ql[i, NEXT]
+        # The empty buckets jumped over count as steps for the retuning (capped: the
+        # gap may be astronomically many buckets).
+        qs[ADVANCED] += np.int64(min((t0 - qf[ORIGIN]) * qf[INVW] - qs[CUR], 2.0 ** 40))
+        qf[ORIGIN] = t0
+        qs[CUR] = 0
+    qs[BOUNDARY] = qs[CUR] + nb
+    i = chain
+    while i >= 0:
+        nx = ql[i, NEXT]
+        _place(i, qt, ql, hv, qhead, qs, qf)
+        i = nx
+
+
+@kernel
+def top(qt, ql, hv, qhead, qs, qf):
+    """The disk with the earliest event, or -1 if nothing is scheduled.
+
+    Advances the calendar to the first non-empty bucket if the current one is done.
+    """
+    nb = qs[MASK] + 1
+    if qs[LOADED] + qs[ADVANCED] >= 2 * nb:
+        # Retune the bucket width from the events per bucket actually seen.
+        per_bucket = qs[LOADED] / max(qs[ADVANCED], 1)
+        if (per_bucket > _RETUNE_FACTOR * TARGET_PER_BUCKET
+                or per_bucket * _RETUNE_FACTOR < TARGET_PER_BUCKET):
+            _replace_all(qf[INVW] * per_bucket / TARGET_PER_BUCKET, qt, ql, hv, qhead, qs, qf)
+        qs[LOADED] = 0
+        qs[ADVANCED] = 0
+    while qs[NHEAP] == 0:
+        if qs[NLIST] == 0:
+            if qs[NOVER] == 0:
+                return -1
+            _scan_overflow(True, qt, ql, hv, qhead, qs, qf)
+            continue
+        cur = qs[CUR] + 1
+        qs[CUR] = cur
+        qs[ADVANCED] += 1
+        if cur >= qs[BOUNDARY]:
+            _scan_overflow(False, qt, ql, hv, qhead, qs, qf)
+        lst = cur & qs[MASK]
+        i = qhead[lst]
+        qhead[lst] = -1
+        while i >= 0:
+            nx = ql[i, NEXT]
+            qs[NLIST] -= 1
+            _heap_push(i, qt, ql, hv, qs)
+            i = nx
+    return hv[0]
 
 
 @njit
-def build(hkey, hval, where, times):
-    """Heapify all disks from scratch (O(N)) with ``times[i]`` the time of disk ``i``."""
-    n = hkey.shape[0]
+def build(now, times, qt, ql, hv, qhead, qs, qf):
+    """Queue every disk at ``times[i]`` (all ``>= now``; ``inf``: none), choosing the
+    bucket width so that the current rate of events fills about two per bucket."""
+    n = times.shape[0]
+    finite = times < INF
+    count = int(finite.sum())
+    invw = 1.0
+    if count > 0:
+        # Median rather than mean: a few very slow disks must not widen every bucket.
+        # For exponential waiting times the mean is the median / ln 2.
+        wait = np.median(times[finite] - now) / math.log(2.0)
+        if wait > 0.0:
+            invw = count / (TARGET_PER_BUCKET * wait)
     for i in range(n):
-        hkey[i] = times[i]
-        hval[i] = i
-        where[i] = i
-    if n > 1:
-        for k in range((n - 2) // 4, -1, -1):
-            sift_down(hkey, hval, where, k)
+        qt[i] = times[i]
+        ql[i, LOC] = 0 if times[i] < INF else -1
+    _replace_all(invw, qt, ql, hv, qhead, qs, qf)

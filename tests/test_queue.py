@@ -1,0 +1,158 @@
+"""The calendar queue (``_engine/queue.py``) against a plain sorted reference.
+
+The engine relies on two properties: ``top`` always names the disk with the earliest
+``(time, index)`` among everything scheduled, and the structure stays consistent under
+any sequence of ``set_time`` calls (ties, ``inf``, times far beyond the calendar's
+year, changes of the event rate that retune the bucket width).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import edmd2d as ed
+from edmd2d._engine import queue as q
+
+
+def check_queue(qt, ql, hv, qhead, qs, qf):
+    """Assert every structural invariant of the queue; return the set of queued disks."""
+    n = len(qt)
+    nb = int(qs[q.MASK]) + 1
+    cur = int(qs[q.CUR])
+    origin, invw = float(qf[q.ORIGIN]), float(qf[q.INVW])
+    seen = {}
+    nheap = int(qs[q.NHEAP])
+    for k in range(nheap):
+        d = int(hv[k])
+        assert ql[d, q.LOC] == k
+        assert d not in seen
+        seen[d] = "heap"
+        assert math.floor((float(qt[d]) - origin) * invw) <= cur
+        if k:
+            p = int(hv[(k - 1) // 2])
+            assert (qt[p], p) < (qt[d], d), "heap order"
+    counts = [0, 0]
+    for lst in range(nb + 1):
+        d, prev = int(qhead[lst]), -1
+        while d >= 0:
+            assert d not in seen
+            seen[d] = lst
+            assert ql[d, q.LOC] == -2 - lst and ql[d, q.PREV] == prev
+            x = (float(qt[d]) - origin) * invw
+            if lst < nb:
+                b = math.floor(x)
+                assert cur < b < cur + nb and b % nb == lst
+            else:
+                assert x >= qs[q.BOUNDARY]
+            counts[lst == nb] += 1
+            prev, d = d, int(ql[d, q.NEXT])
+    assert counts == [qs[q.NLIST], qs[q.NOVER]]
+    for d in range(n):
+        assert (d in seen) == (qt[d] < np.inf)
+        if d not in seen:
+            assert ql[d, q.LOC] == -1
+    return set(seen)
+
+
+def earliest(qt):
+    finite = np.flatnonzero(qt < np.inf)
+    if not len(finite):
+        return -1
+    return int(min(finite, key=lambda d: (qt[d], d)))
+
+
+def drive(n, now, times, updates):
+    """Build a queue of ``n`` disks, then alternately pop the top (giving it a later
+    time from ``updates``) and reschedule arbitrary disks, checking against the
+    reference after every step."""
+    arrays = q.allocate(n)
+    qt = arrays[0]
+    q.build(now, np.asarray(times, float), *arrays)
+    check_queue(*arrays)
+    for disk, dt, pop in updates:
+        top = q.top(*arrays)
+        assert top == earliest(qt)
+        if top >= 0:
+            now = qt[top]
+        if pop and top >= 0:
+            disk = top
+        elif disk >= n:
+            continue
+        q.set_time(disk, now + dt, *arrays)
+        check_queue(*arrays)
+        assert q.top(*arrays) == earliest(qt)
+    return arrays
+
+
+# Waiting times: mostly of order 1, some ties (0), some huge, some never.
+waits = st.one_of(
+    st.floats(0.0, 3.0),
+    st.sampled_from([0.0, 0.5, 1e-12, 1e9, 1e300, math.inf]),
+)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    n=st.integers(1, 40),
+    now=st.sampled_from([0.0, 1.0, 1e6]),
+    data=st.data(),
+)
+def test_random_operations_match_sorted_reference(n, now, data):
+    times = [now + w for w in data.draw(st.lists(waits, min_size=n, max_size=n))]
+    updates = data.draw(st.lists(
+        st.tuples(st.integers(0, n + 2), waits, st.booleans()), max_size=120))
+    drive(n, now, times, updates)
+
+
+def test_rate_change_retunes_bucket_width():
+    # Start with waiting times of order 1, then (as after a change of temperature)
+    # give every disk a wait 10^4 times shorter, run, then 10^4 times longer: each
+    # regime must end up with about two events per bucket (within the retuning
+    # factor), and the order stays exact throughout.
+    rng = np.random.default_rng(7)
+    n = 300
+    arrays = q.allocate(n)
+    qt, qf = arrays[0], arrays[5]
+    q.build(0.0, rng.exponential(1.0, n), *arrays)
+    for scale in (1e-4, 1e4):
+        now = qt[q.top(*arrays)]
+        for i in range(n):
+            q.set_time(i, now + rng.exponential(scale), *arrays)
+        for k in range(40 * n):
+            i = q.top(*arrays)
+            if k % 50 == 0:
+                assert i == earliest(qt)
+            q.set_time(i, qt[i] + rng.exponential(scale), *arrays)
+        check_queue(*arrays)
+        # Events processed per unit time ~ n / scale; one bucket is 1 / invw long.
+        per_bucket = (n / scale) / qf[q.INVW]
+        assert 1 / q._RETUNE_FACTOR <= per_bucket / q.TARGET_PER_BUCKET <= q._RETUNE_FACTOR
+
+
+def test_all_events_at_one_instant_and_nothing_scheduled():
+    # A perfect lattice moving in step crosses cells all at once: many exact ties.
+    arrays = drive(50, 2.0, [2.5] * 50, [(k % 50, 0.5, True) for k in range(200)])
+    qt = arrays[0]
+    for d in range(50):
+        q.set_time(d, math.inf, *arrays)
+    check_queue(*arrays)
+    assert q.top(*arrays) == -1 and (qt == np.inf).all()
+
+
+@pytest.mark.parametrize("n", [10, 2000])
+def test_engine_queue_consistent_during_runs(n):
+    # The queue inside a real simulation (with memory re-sorting for the larger one,
+    # done far more often than usual) stays consistent and its top is the earliest.
+    sim = ed.make_gas(n, 0.6, seed=32)
+    if n >= 1024:
+        sim._reorder_every = 997
+    for step in range(1, 21):
+        sim.advance(until=0.05 * step)
+        arrays = sim._queue_args()
+        check_queue(*arrays)
+        assert q.top(*arrays) == earliest(arrays[0])

@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._engine import aligned_rows
 from ._engine import grid as _grid
 from ._engine import loop as _loop
 from ._engine import overlap as _overlap
@@ -198,11 +199,12 @@ class Simulation:
         # Image counters stay int64: a fast disk in a small periodic box can wrap more
         # than 2^31 times in a long run.
         self._image = np.zeros((n, 2), np.int64)
-        self._cell = np.empty(n, idx)
+        # E: the per-disk bookkeeping table (cell, kept candidate, queue links).
+        self._qt, self._E, self._hv, self._qhead, self._qs, self._qf = _queue.allocate(n)
         self._head = np.empty(ncx * ncy, idx)
         self._nxt = np.empty(n, idx)
         self._prv = np.empty(n, idx)
-        _grid.build_cells(pos, self._gi, self._gf, self._cell, self._head,
+        _grid.build_cells(pos, self._gi, self._gf, self._E[:, _loop.CELL], self._head,
                           self._nxt, self._prv)
         if wall_list:
             self._wa = np.array([w.start for w in wall_list], np.float64)
@@ -216,9 +218,6 @@ class Simulation:
         )
         self._check_overlaps(pos, rad)
 
-        self._ev_i = np.zeros((n, 4), idx)
-        self._nc_i = np.zeros((n, 4), idx)
-        self._qt, self._ql, self._hv, self._qhead, self._qs, self._qf = _queue.allocate(n)
         self._counts = np.zeros(_loop.N_COUNTS, np.int64)
         self._acc = np.zeros(_loop.N_ACC, np.float64)
         self._log_t = np.zeros(0)
@@ -270,7 +269,7 @@ class Simulation:
 
     def _check_overlaps(self, pos: np.ndarray, rad: np.ndarray) -> None:
         i, j, dist = _overlap.first_disk_overlap(
-            pos, rad, self._gi, self._gf, self._cell, self._head, self._nxt,
+            pos, rad, self._gi, self._gf, self._E[:, _loop.CELL], self._head, self._nxt,
             _OVERLAP_TOL,
         )
         if i >= 0:
@@ -280,7 +279,7 @@ class Simulation:
                 f"sum of radii {rad[i] + rad[j]:.6g})"
             )
         i, w, dist = _overlap.first_wall_overlap(
-            pos, rad, self._gf, self._cell, self._wa, self._wb,
+            pos, rad, self._gf, self._E[:, _loop.CELL], self._wa, self._wb,
             self._wstart, self._wwall, self._wsx, self._wsy, _OVERLAP_TOL,
         )
         if i >= 0:
@@ -291,13 +290,13 @@ class Simulation:
 
     # ------------------------------------------------------------------ engine calls
     def _grid_args(self):
-        return (self._gi, self._gf, self._cell, self._head, self._nxt)
+        return (self._gi, self._gf, self._head, self._nxt)
 
     def _wall_args(self):
         return (self._wa, self._wb, self._wstart, self._wwall, self._wsx, self._wsy)
 
     def _queue_args(self):
-        return (self._qt, self._ql, self._hv, self._qhead, self._qs, self._qf)
+        return (self._qt, self._E, self._hv, self._qhead, self._qs, self._qf)
 
     def _reorder(self) -> None:
         """Re-sort the internal rows along the Z-order of their cells (see module top).
@@ -306,28 +305,25 @@ class Simulation:
         interrupt cannot leave them half permuted.  The queue is rebuilt rather than
         renumbered, which keeps its tie order (time, then internal index) exact.
         """
-        perm = _grid.order_by_cell(self._cell, self._cell_rank, len(self._cell_rank))
+        perm = _grid.order_by_cell(self._E[:, _loop.CELL], self._cell_rank,
+                                   len(self._cell_rank))
         inv = np.empty_like(perm)
         inv[perm] = np.arange(len(perm))
         state = _aligned_rows(len(perm))
         state[:] = self._S[perm]
-        events = []
-        for ev in (self._ev_i, self._nc_i):
-            ev = ev[perm]
-            disk = ev[:, 0] == _loop.DISK
-            ev[disk, 1] = inv[ev[disk, 1]]
-            events.append(ev)
-        cell = self._cell[perm]
-        head, nxt, prv = (np.empty_like(a) for a in (self._head, self._nxt, self._prv))
-        _grid.build_lists(cell, head, nxt, prv)
         queue = _queue.allocate(len(perm))
+        table = queue[1]
+        table[:] = self._E[perm]
+        disk = table[:, _loop.KIND] & _loop._KIND_MASK == _loop.DISK
+        table[disk, _loop.PARTNER] = inv[table[disk, _loop.PARTNER]]
+        head, nxt, prv = (np.empty_like(a) for a in (self._head, self._nxt, self._prv))
+        _grid.build_lists(table[:, _loop.CELL], head, nxt, prv)
         _queue.build(self._time, self._qt[perm], *queue)
-        (self._S, self._mass, self._order, self._stamp, self._image, self._cell,
-         self._ev_i, self._nc_i, self._head, self._nxt, self._prv,
-         (self._qt, self._ql, self._hv, self._qhead, self._qs, self._qf), self._since_reorder) = (
+        (self._S, self._mass, self._order, self._stamp, self._image,
+         self._head, self._nxt, self._prv,
+         (self._qt, self._E, self._hv, self._qhead, self._qs, self._qf), self._since_reorder) = (
             state, self._mass[perm], self._order[perm], self._stamp[perm],
-            self._image[perm], cell, events[0], events[1], head, nxt, prv,
-            queue, 0)
+            self._image[perm], head, nxt, prv, queue, 0)
 
     def _to_user(self, internal: np.ndarray) -> np.ndarray:
         """Rows in the user's disk order (a new array)."""
@@ -337,8 +333,8 @@ class Simulation:
 
     def _predict_all(self) -> None:
         _loop.predict_all(
-            self._time, self._S, self._stamp, *self._grid_args(), *self._wall_args(),
-            self._nc_i, self._ev_i, *self._queue_args(),
+            self._time, self._S, self._E, self._stamp, *self._grid_args(), *self._wall_args(),
+            self._qt, self._hv, self._qhead, self._qs, self._qf,
         )
 
     def advance(self, until: float | None = None, collisions: int | None = None) -> Simulation:
@@ -396,8 +392,8 @@ class Simulation:
             try:
                 status = _loop.run(
                     t_end, remaining, budget,
-                    self._S, self._stamp, self._image, *self._grid_args(), self._prv,
-                    *self._wall_args(), self._nc_i, self._ev_i, *self._queue_args(),
+                    self._S, self._E, self._stamp, self._image, *self._grid_args(), self._prv,
+                    *self._wall_args(), self._qt, self._hv, self._qhead, self._qs, self._qf,
                     self._counts, self._acc, out, info, self._log_t, self._log_e,
                     self._log_n, self._order,
                 )
@@ -580,12 +576,9 @@ class Simulation:
 
 
 def _aligned_rows(n: int) -> np.ndarray:
-    """An uninitialised C-contiguous (n, 8) float64 array whose 64-byte rows start on
-    64-byte boundaries, so that reading one disk's state touches one cache line."""
-    width = _loop.N_STATE
-    buf = np.empty(n * width + width, np.float64)
-    skip = (-buf.ctypes.data % 64) // 8
-    return buf[skip:skip + n * width].reshape(n, width)
+    """An uninitialised (n, 8) float64 state table whose 64-byte rows start on 64-byte
+    boundaries, so that reading one disk's state touches one cache line."""
+    return aligned_rows(n, _loop.N_STATE, np.float64)
 
 
 def _as_walls(walls) -> list[Wall]:

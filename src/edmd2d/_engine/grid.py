@@ -48,8 +48,8 @@ def cell_coord(x, side, ncell):
 
 
 @kernel
-def insert(i, c, cell, head, nxt, prv):
-    cell[i] = c
+def insert(i, c, head, nxt, prv):
+    """Put disk ``i`` at the front of cell ``c``'s list."""
     h = head[c]
     nxt[i] = h
     prv[i] = -1
@@ -59,8 +59,8 @@ def insert(i, c, cell, head, nxt, prv):
 
 
 @kernel
-def remove(i, cell, head, nxt, prv):
-    c = cell[i]
+def remove(i, c, head, nxt, prv):
+    """Take disk ``i`` out of cell ``c``'s list."""
     p = prv[i]
     n = nxt[i]
     if p >= 0:
@@ -225,4 +225,4 @@ def build_lists(cell, head, nxt, prv):
     """Rebuild the per-cell lists from ``cell`` (each list in ascending disk order)."""
     head[:] = -1
     for i in range(cell.shape[0] - 1, -1, -1):
-        insert(i, cell[i], cell, head, nxt, prv)
+        insert(i, cell[i], head, nxt, prv)

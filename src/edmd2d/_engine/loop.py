@@ -4,9 +4,16 @@ State layout (struct of arrays, one row per disk):
 
 ``S[i] = (x, y, vx, vy, t_local, radius, 1/mass, t_candidate)`` (float64, 64 bytes,
 allocated 64-byte aligned: one cache line), ``stamp[i]`` (int32 invalidation counter),
-``ev_i[i] = (kind, partner, aux, partner_stamp)`` (int32) the scheduled event, whose
-time sits in the calendar queue (queue.py), and
-``nc_i[i]`` (with time ``S[i, 7]``) the best candidate that is *not* a cell crossing.
+and the bookkeeping row ``E[i]`` (int32, 32 bytes, 32-byte aligned):
+
+``E[i] = (cell, kind, partner, aux, partner_stamp, next, prev, loc)``
+
+``kind, partner, aux, partner_stamp`` (with time ``S[i, TC]``) is the kept candidate
+``nc``: the best event that is *not* a cell crossing; ``next, prev, loc`` are disk
+``i``'s links in the calendar queue (queue.py), which holds its scheduled time
+``qt[i]``.  The scheduled event is the cell crossing when ``qt[i] < S[i, TC]`` (its
+direction is kept in bits 4-5 of ``kind``), and ``nc`` otherwise.  What the loop needs
+about a disk thus sits in two rows instead of a cache line per array.
 
 Why one event per disk is enough: a disk's event is the minimum over its candidates.
 When a partner ``j`` changes course it is re-predicted against all its neighbours, so
@@ -40,7 +47,11 @@ from .predict import INF, box_wall_time, exit_time, pair_time, segment_time
 X, Y, VX, VY, T, R, INVM, TC = 0, 1, 2, 3, 4, 5, 6, 7
 N_STATE = 8
 
-# Event kinds (ev_i[:, 0])
+# Columns of E (the last three, NEXT, PREV and LOC, belong to the queue)
+CELL, KIND, PARTNER, AUX, PSTAMP = 0, 1, 2, 3, 4
+_KIND_MASK = 15  # low bits of E[:, KIND]; the bits above hold the crossing direction
+
+# Event kinds
 NONE = 0
 DISK = 1
 SEGMENT = 2
@@ -126,9 +137,9 @@ def _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy, best, p
 
 
 @njit(inline="always")
-def _schedule(i, t, x, y, vx, vy, cx, cy, S, gi, gf, nc_i, ev_i):
-    """Schedule for disk ``i`` the earlier of its kept candidate and leaving its cell;
-    returns the event time."""
+def _schedule(i, t, x, y, vx, vy, cx, cy, S, E, gi, gf):
+    """The time of disk ``i``'s next event: the earlier of its kept candidate and
+    leaving its cell (whose direction is recorded in ``E[i, KIND]``)."""
     dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
     dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
     if dty < dtx:
@@ -136,23 +147,12 @@ def _schedule(i, t, x, y, vx, vy, cx, cy, S, gi, gf, nc_i, ev_i):
         aux = 2 if diry > 0 else 3
     else:
         aux = 0 if dirx > 0 else 1
-    t_cross = t + dtx
-    if S[i, TC] <= t_cross:
-        ev_i[i, 0] = nc_i[i, 0]
-        ev_i[i, 1] = nc_i[i, 1]
-        ev_i[i, 2] = nc_i[i, 2]
-        ev_i[i, 3] = nc_i[i, 3]
-        return S[i, TC]
-    ev_i[i, 0] = CROSS if dtx < INF else NONE
-    ev_i[i, 1] = -1
-    ev_i[i, 2] = aux
-    ev_i[i, 3] = 0
-    return t_cross
+    E[i, KIND] = (E[i, KIND] & _KIND_MASK) | (aux << 4)
+    return min(S[i, TC], t + dtx)
 
 
 @kernel
-def predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
-                 wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i):
+def predict_disk(i, t, S, E, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy):
     """Full prediction of disk ``i`` from time ``t``: all 9 neighbour cells, its cell's
     walls and the box walls.  Keeps the best non-crossing candidate and schedules."""
     dt0 = t - S[i, T]
@@ -161,7 +161,7 @@ def predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
     x = S[i, X] + dt0 * vx
     y = S[i, Y] + dt0 * vy
     r = S[i, R]
-    c = cell[i]
+    c = E[i, CELL]
     cy = c // gi[0]
     cx = c - cy * gi[0]
 
@@ -196,28 +196,28 @@ def predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
         partner = pw
         aux = aw
     S[i, TC] = t + best
-    nc_i[i, 0] = kind
-    nc_i[i, 1] = partner
-    nc_i[i, 2] = aux
-    nc_i[i, 3] = pst if kind == DISK else 0
-    return _schedule(i, t, x, y, vx, vy, cx, cy, S, gi, gf, nc_i, ev_i)
+    E[i, KIND] = kind
+    E[i, PARTNER] = partner
+    E[i, AUX] = aux
+    E[i, PSTAMP] = pst if kind == DISK else 0
+    return _schedule(i, t, x, y, vx, vy, cx, cy, S, E, gi, gf)
 
 
 @kernel
-def predict_after_crossing(i, t, direction, S, stamp, gi, gf, cell, head, nxt,
-                           wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i):
+def predict_after_crossing(i, t, direction, S, E, stamp, gi, gf, head, nxt,
+                           wa, wb, wstart, wwall, wsx, wsy):
     """Disk ``i`` (at time ``t``, already in its new cell, not wrapped) crossed in
     ``direction`` (0:+x 1:-x 2:+y 3:-y): scan only the newly exposed row of cells and
     return the new event time, or -1 if the kept candidate is stale and a full
     prediction is needed."""
-    if nc_i[i, 0] == DISK and stamp[nc_i[i, 1]] != nc_i[i, 3]:
+    if E[i, KIND] & _KIND_MASK == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP]:
         return -1.0
     vx = S[i, VX]
     vy = S[i, VY]
     x = S[i, X]  # advanced to t by the caller
     y = S[i, Y]
     r = S[i, R]
-    c = cell[i]
+    c = E[i, CELL]
     cy = c // gi[0]
     cx = c - cy * gi[0]
     if direction == 0:
@@ -234,30 +234,30 @@ def predict_after_crossing(i, t, direction, S, stamp, gi, gf, cell, head, nxt,
     if bd < best:
         best = bd
         S[i, TC] = t + bd
-        nc_i[i, 0] = DISK
-        nc_i[i, 1] = pd
-        nc_i[i, 2] = ad
-        nc_i[i, 3] = pst
+        E[i, KIND] = DISK
+        E[i, PARTNER] = pd
+        E[i, AUX] = ad
+        E[i, PSTAMP] = pst
     bw, pw, aw = _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy,
                              best, -1, 0)
     if bw < best:
         S[i, TC] = t + bw
-        nc_i[i, 0] = SEGMENT
-        nc_i[i, 1] = pw
-        nc_i[i, 2] = aw
-        nc_i[i, 3] = 0
-    return _schedule(i, t, x, y, vx, vy, cx, cy, S, gi, gf, nc_i, ev_i)
+        E[i, KIND] = SEGMENT
+        E[i, PARTNER] = pw
+        E[i, AUX] = aw
+        E[i, PSTAMP] = 0
+    return _schedule(i, t, x, y, vx, vy, cx, cy, S, E, gi, gf)
 
 
 @njit
-def predict_all(t, S, stamp, gi, gf, cell, head, nxt,
-                wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i, qt, ql, hv, qhead, qs, qf):
+def predict_all(t, S, E, stamp, gi, gf, head, nxt,
+                wa, wb, wstart, wwall, wsx, wsy, qt, hv, qhead, qs, qf):
     """Predict every disk's next event from time ``t`` and rebuild the queue."""
     times = np.empty(S.shape[0])
     for i in range(S.shape[0]):
-        times[i] = predict_disk(i, t, S, stamp, gi, gf, cell, head, nxt,
-                                wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
-    queue.build(t, times, qt, ql, hv, qhead, qs, qf)
+        times[i] = predict_disk(i, t, S, E, stamp, gi, gf, head, nxt,
+                                wa, wb, wstart, wwall, wsx, wsy)
+    queue.build(t, times, qt, E, hv, qhead, qs, qf)
 
 
 @njit(inline="always")
@@ -280,9 +280,9 @@ def _reflect(i, nx, ny, S, acc, slot):
 
 @kernel
 def run(t_end, max_collisions, max_events,
-        S, stamp, image, gi, gf, cell, head, nxt, prv,
+        S, E, stamp, image, gi, gf, head, nxt, prv,
         wa, wb, wstart, wwall, wsx, wsy,
-        nc_i, ev_i, qt, ql, hv, qhead, qs, qf,
+        qt, hv, qhead, qs, qf,
         counts, acc, out, info, log_t, log_e, log_n, order):
     """Process events in time order.
 
@@ -306,7 +306,7 @@ def run(t_end, max_collisions, max_events,
     n_ev = 0
     status = REACHED_TIME
     while True:
-        i = queue.top(qt, ql, hv, qhead, qs, qf)
+        i = queue.top(qt, E, hv, qhead, qs, qf)
         if i < 0:
             status = NO_EVENTS
             break
@@ -317,9 +317,14 @@ def run(t_end, max_collisions, max_events,
         if n_ev >= max_events:
             status = REACHED_EVENT_LIMIT
             break
-        kind = ev_i[i, 0]
-        partner = ev_i[i, 1]
-        aux = ev_i[i, 2]
+        if t < S[i, TC]:
+            kind = CROSS
+            partner = -1
+            aux = E[i, KIND] >> 4
+        else:
+            kind = E[i, KIND] & _KIND_MASK
+            partner = E[i, PARTNER]
+            aux = E[i, AUX]
         # Disks whose events must be predicted afresh once this event is handled.
         # (One call site for the full prediction keeps the compiled loop small.  Marking
         # predict_disk inline="always" measured 1.04 -> 1.14 M collisions/s at N=10^4,
@@ -331,7 +336,7 @@ def run(t_end, max_collisions, max_events,
 
         if kind == DISK:
             j = partner
-            if stamp[j] != ev_i[i, 3]:
+            if stamp[j] != E[i, PSTAMP]:
                 # The partner changed course since this was predicted: re-predict i only.
                 redo0 = i
                 stale = True
@@ -420,7 +425,7 @@ def run(t_end, max_collisions, max_events,
             counts[C_WALL] += 1
         else:  # CROSS
             _advance(i, t, S)
-            c = cell[i]
+            c = E[i, CELL]
             cy = c // ncx
             cx = c - cy * ncx
             wrapped = False
@@ -452,28 +457,30 @@ def run(t_end, max_collisions, max_events,
                     S[i, Y] += height
                     image[i, 1] -= 1
                     wrapped = True
-            remove(i, cell, head, nxt, prv)
-            insert(i, cx + ncx * cy, cell, head, nxt, prv)
+            remove(i, c, head, nxt, prv)
+            c = cx + ncx * cy
+            insert(i, c, head, nxt, prv)
+            E[i, CELL] = c
             if wrapped:
                 # Other disks' predictions hold i's image shift: invalidate them, and
                 # the kept candidate of i is in the old frame: predict afresh.
                 stamp[i] += 1
                 redo0 = i
             else:
-                t_new = predict_after_crossing(i, t, aux, S, stamp, gi, gf, cell, head, nxt,
-                                               wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
+                t_new = predict_after_crossing(i, t, aux, S, E, stamp, gi, gf, head, nxt,
+                                               wa, wb, wstart, wwall, wsx, wsy)
                 if t_new < 0.0:
                     redo0 = i
                 else:
-                    queue.set_time(i, t_new, qt, ql, hv, qhead, qs, qf)
+                    queue.set_time(i, t_new, qt, E, hv, qhead, qs, qf)
             counts[C_CROSSINGS] += 1
 
         for k in range(2):
             d = redo0 if k == 0 else redo1
             if d >= 0:
-                t_new = predict_disk(d, t, S, stamp, gi, gf, cell, head, nxt,
-                                     wa, wb, wstart, wwall, wsx, wsy, nc_i, ev_i)
-                queue.set_time(d, t_new, qt, ql, hv, qhead, qs, qf)
+                t_new = predict_disk(d, t, S, E, stamp, gi, gf, head, nxt,
+                                     wa, wb, wstart, wwall, wsx, wsy)
+                queue.set_time(d, t_new, qt, E, hv, qhead, qs, qf)
         if stale:
             counts[C_STALE] += 1
             continue

@@ -18,7 +18,9 @@ Arrays (``N`` disks):
 
 ``qt[i]``
     the scheduled time of disk ``i`` (``inf``: nothing scheduled, not queued);
-``ql[i, NEXT]``, ``ql[i, PREV]``, ``ql[i, LOC]`` (int32 columns of a per-disk table)
+``ql[i, NEXT]``, ``ql[i, PREV]``, ``ql[i, LOC]``
+    (int32; the last three columns of the engine's per-disk table ``E``, whose first
+    columns belong to the event loop, so that a disk's links share its row)
     ``NEXT``/``PREV`` link ``i`` in its bucket list; ``LOC`` is ``i``'s slot in the
     heap if ``>= 0``, ``-1`` if not queued, or ``-2 - list`` if in list ``list``
     (``nb`` is the overflow list);
@@ -44,12 +46,13 @@ import math
 import numpy as np
 
 from .._jit import kernel, njit
+from . import aligned_rows
 
 INF = math.inf
 
-# Columns of ql
-NEXT, PREV, LOC = 0, 1, 2
-N_QL = 3
+# Columns of ql (the engine's table E, see loop.py)
+NEXT, PREV, LOC = 5, 6, 7
+N_QL = 8
 # qs: current bucket, heap size, events in the year's lists, events in overflow,
 # nb - 1, bucket at which the overflow is next scanned, heap insertions and bucket
 # steps since the bucket width was last checked.
@@ -64,7 +67,8 @@ _RETUNE_FACTOR = 8.0
 
 
 def allocate(n):
-    """Arrays for a queue of ``n`` disks: ``(qt, ql, hv, qhead, qs, qf)``."""
+    """Arrays for a queue of ``n`` disks: ``(qt, ql, hv, qhead, qs, qf)``; ``ql`` is
+    the engine's whole per-disk table ``E`` (32-byte rows, 32-byte aligned)."""
     nb = 16
     while nb < n:
         nb *= 2
@@ -72,8 +76,10 @@ def allocate(n):
     qs[MASK] = nb - 1
     qf = np.zeros(N_QF, np.float64)
     qf[INVW] = 1.0
-    return (np.full(n, INF), np.full((n, N_QL), -1, np.int32), np.full(n, -1, np.int32),
-            np.full(nb + 1, -1, np.int32), qs, qf)
+    ql = aligned_rows(n, N_QL, np.int32, align=32)
+    ql[:] = -1
+    return (np.full(n, INF), ql, np.full(n, -1, np.int32), np.full(nb + 1, -1, np.int32),
+            qs, qf)
 
 
 @njit(inline="always")

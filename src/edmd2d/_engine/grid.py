@@ -225,4 +225,4 @@ def build_lists(cell, head, nxt, prv):
     """Rebuild the per-cell lists from ``cell`` (each list in ascending disk order)."""
     head[:] = -1
     for i in range(cell.shape[0] - 1, -1, -1):
-        insert(i, cell[i], head, nxt, prv)
+        insert(i, np.int64(cell[i]), head, nxt, prv)

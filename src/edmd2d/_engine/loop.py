@@ -39,7 +39,7 @@ import math
 import numpy as np
 
 from .._jit import kernel, njit
-from . import queue
+from . import prefetch, queue
 from .grid import insert, neighbour, remove
 from .predict import INF, box_wall_time, exit_time, pair_time, segment_time
 
@@ -165,6 +165,12 @@ def predict_disk(i, t, S, E, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall, ws
     cy = c // gi[0]
     cx = c - cy * gi[0]
 
+    # The three rows of neighbour cells are far apart in memory: request all three
+    # at once instead of one after the other inside the scan.
+    for oy in range(-1, 2):
+        nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
+        if nyc >= 0:
+            prefetch(head, max(cx - 1, 0) + gi[0] * nyc)
     best = INF
     kind = NONE
     partner = -1
@@ -311,6 +317,16 @@ def run(t_end, max_collisions, max_events,
             status = NO_EVENTS
             break
         t = qt[i]
+        # The next events are most likely those of the heap root's children: start
+        # loading their rows now (at large N each is a cache miss otherwise).
+        if qs[queue.NHEAP] > 1:
+            k = hv[1]
+            prefetch(S, k)
+            prefetch(E, k)
+            if qs[queue.NHEAP] > 2:
+                k = hv[2]
+                prefetch(S, k)
+                prefetch(E, k)
         if t > t_end:
             status = REACHED_TIME
             break

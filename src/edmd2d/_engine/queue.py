@@ -31,7 +31,7 @@ Arrays (``N`` disks):
 ``qs`` (int64) and ``qf`` (float64)
     the scalars below.
 
-The bucket width adapts: it is chosen at :func:`build` from the median time to the
+The bucket width adapts: it is chosen at :func:`build` from the (trimmed) mean time to the
 next event, and whenever about two years' worth of operations show the buckets holding
 on average more than 8x or less than 1/8x the target of two events, every queued event
 is re-placed with a width scaled to match (O(N), amortised over at least ``2 nb``
@@ -89,7 +89,7 @@ def _before(qt, a, b):
     return ta < tb or (ta == tb and a < b)
 
 
-@njit(inline="always")
+@kernel
 def _sift_up(qt, ql, hv, k):
     """Move the heap entry at slot ``k`` up while earlier than its parent; its slot."""
     i = hv[k]
@@ -107,7 +107,7 @@ def _sift_up(qt, ql, hv, k):
     return k
 
 
-@njit(inline="always")
+@kernel
 def _sift_down(qt, ql, hv, n, k):
     """Move the heap entry at slot ``k`` down while a child is earlier."""
     i = hv[k]
@@ -151,7 +151,7 @@ def _link(i, lst, ql, qhead):
     ql[i, LOC] = -2 - lst
 
 
-@njit(inline="always")
+@kernel
 def _place(i, qt, ql, hv, qhead, qs, qf):
     """Queue disk ``i`` (not queued) at its time ``qt[i]``."""
     t = qt[i]
@@ -288,7 +288,7 @@ def top(qt, ql, hv, qhead, qs, qf):
     while qs[NHEAP] == 0:
         if qs[NLIST] == 0:
             if qs[NOVER] == 0:
-                return -1
+                return np.int64(-1)
             _scan_overflow(True, qt, ql, hv, qhead, qs, qf)
             continue
         cur = qs[CUR] + 1
@@ -304,23 +304,35 @@ def top(qt, ql, hv, qhead, qs, qf):
             qs[NLIST] -= 1
             _heap_push(i, qt, ql, hv, qs)
             i = nx
-    return hv[0]
+    return np.int64(hv[0])
 
 
-@njit
+@kernel
 def build(now, times, qt, ql, hv, qhead, qs, qf):
     """Queue every disk at ``times[i]`` (all ``>= now``; ``inf``: none), choosing the
     bucket width so that the current rate of events fills about two per bucket."""
     n = times.shape[0]
-    finite = times < INF
-    count = int(finite.sum())
+    # The mean wait, recomputed without the waits beyond four times the mean: a few
+    # very slow disks must not widen every bucket.  (Only a starting value: the width
+    # is retuned from the events actually seen.)
+    wait = 0.0
+    queued = 0
+    for sweep in range(2):
+        limit = 4.0 * wait if sweep == 1 else INF
+        count = 0
+        total = 0.0
+        for i in range(n):
+            w = times[i] - now
+            if times[i] < INF and w <= limit:
+                count += 1
+                total += w
+        if sweep == 0:
+            queued = count
+        if count > 0:
+            wait = total / count
     invw = 1.0
-    if count > 0:
-        # Median rather than mean: a few very slow disks must not widen every bucket.
-        # For exponential waiting times the mean is the median / ln 2.
-        wait = np.median(times[finite] - now) / math.log(2.0)
-        if wait > 0.0:
-            invw = count / (TARGET_PER_BUCKET * wait)
+    if wait > 0.0:
+        invw = queued / (TARGET_PER_BUCKET * wait)
     for i in range(n):
         qt[i] = times[i]
         ql[i, LOC] = 0 if times[i] < INF else -1

@@ -348,6 +348,7 @@ def run(t_end, max_collisions, max_events,
         # inlines it), over the 10 s target; it is left a plain call.)
         redo0 = -1
         redo1 = -1
+        known = -1.0  # the new event time of i if already known (after a crossing)
         stale = False
 
         if kind == DISK:
@@ -488,15 +489,22 @@ def run(t_end, max_collisions, max_events,
                 if t_new < 0.0:
                     redo0 = i
                 else:
-                    queue.set_time(i, t_new, qt, E, hv, qhead, qs, qf)
+                    known = t_new
             counts[C_CROSSINGS] += 1
 
+        # (One call site each for the prediction and the queue update: set_time is
+        # inlined here, and a second copy would lengthen compilation.)
         for k in range(2):
             d = redo0 if k == 0 else redo1
             if d >= 0:
                 t_new = predict_disk(d, t, S, E, stamp, gi, gf, head, nxt,
                                      wa, wb, wstart, wwall, wsx, wsy)
-                queue.set_time(d, t_new, qt, E, hv, qhead, qs, qf)
+            elif k == 0 and known >= 0.0:
+                d = i
+                t_new = known
+            else:
+                continue
+            queue.set_time(d, t_new, qt, E, hv, qhead, qs, qf)
         if stale:
             counts[C_STALE] += 1
             continue

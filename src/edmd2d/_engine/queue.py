@@ -200,7 +200,7 @@ def _take(i, qt, ql, hv, qhead, qs):
     ql[i, LOC] = -1
 
 
-@kernel
+@njit(inline="always")
 def set_time(i, t, qt, ql, hv, qhead, qs, qf):
     """Give disk ``i`` the event time ``t`` (``inf``: none) and restore the queue."""
     loc = ql[i, LOC]
@@ -270,7 +270,7 @@ def _scan_overflow(restart, qt, ql, hv, qhead, qs, qf):
         i = nx
 
 
-@kernel
+@njit(inline="always")
 def top(qt, ql, hv, qhead, qs, qf):
     """The disk with the earliest event, or -1 if nothing is scheduled.
 

@@ -278,6 +278,8 @@ class Simulation:
                 f"positions: disk {i} overlaps {what} (centre distance {dist:.6g} < "
                 f"sum of radii {rad[i] + rad[j]:.6g})"
             )
+        if not self._walls:
+            return
         i, w, dist = _overlap.first_wall_overlap(
             pos, rad, self._gf, self._E[:, _loop.CELL], self._wa, self._wb,
             self._wstart, self._wwall, self._wsx, self._wsy, _OVERLAP_TOL,

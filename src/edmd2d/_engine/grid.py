@@ -165,6 +165,8 @@ def bucket_walls(wa, wb, gi, gf, reach):
     ncell = int(gi[0] * gi[1])
     start = np.zeros(ncell + 1, dtype=np.int32)  # per cell: keep it small
     empty = np.zeros(0, dtype=np.int64)
+    if wa.shape[0] == 0:  # nothing to bucket (and nothing to compile)
+        return start, empty, empty, empty
     _bucket_walls(wa, wb, gi, gf, reach, start, empty, empty, empty, False)
     np.cumsum(start, out=start)
     total = int(start[-1])

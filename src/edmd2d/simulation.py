@@ -297,6 +297,15 @@ class Simulation:
     def _wall_args(self):
         return (self._wa, self._wb, self._wstart, self._wwall, self._wsx, self._wsy)
 
+    def _run(self, t_end, max_collisions, max_events, out, info, mode):
+        return _loop.run(
+            t_end, max_collisions, max_events,
+            self._S, self._E, self._stamp, self._image, *self._grid_args(), self._prv,
+            *self._wall_args(), self._qt, self._hv, self._qhead, self._qs, self._qf,
+            self._counts, self._acc, out, info, self._log_t, self._log_e,
+            self._log_n, self._order, mode,
+        )
+
     def _queue_args(self):
         return (self._qt, self._E, self._hv, self._qhead, self._qs, self._qf)
 
@@ -334,10 +343,8 @@ class Simulation:
         return out
 
     def _predict_all(self) -> None:
-        _loop.predict_all(
-            self._time, self._S, self._E, self._stamp, *self._grid_args(), *self._wall_args(),
-            self._qt, self._hv, self._qhead, self._qs, self._qf,
-        )
+        self._run(math.inf, 0, 0, np.array([self._time]), np.full(2, -1, np.int64),
+                  _loop.PREDICT_ALL)
 
     def advance(self, until: float | None = None, collisions: int | None = None) -> Simulation:
         """Run the simulation forward, event by event, in time order.
@@ -392,13 +399,7 @@ class Simulation:
             events_before = self.counts.events
             budget = min(_CHUNK_EVENTS, self._reorder_every - self._since_reorder)
             try:
-                status = _loop.run(
-                    t_end, remaining, budget,
-                    self._S, self._E, self._stamp, self._image, *self._grid_args(), self._prv,
-                    *self._wall_args(), self._qt, self._hv, self._qhead, self._qs, self._qf,
-                    self._counts, self._acc, out, info, self._log_t, self._log_e,
-                    self._log_n, self._order,
-                )
+                status = self._run(t_end, remaining, budget, out, info, _loop.RUN_EVENTS)
             finally:
                 # Also when Ctrl-C arrives as the engine returns: the clock must follow
                 # the events the engine has processed, or positions would be read at a

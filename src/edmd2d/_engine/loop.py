@@ -36,8 +36,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from .._jit import kernel, njit
 from . import prefetch, queue
 from .grid import insert, neighbour, remove
@@ -74,6 +72,10 @@ A_SEGMENTS = 5
 A_VIRIAL_XX = 6
 A_VIRIAL_YY = 7
 N_ACC = 8
+
+# Modes of run(): process events, or predict every disk afresh and rebuild the queue
+RUN_EVENTS = 0
+PREDICT_ALL = 1
 
 # Status codes returned by run()
 REACHED_TIME = 0
@@ -151,10 +153,23 @@ def _schedule(i, t, x, y, vx, vy, cx, cy, S, E, gi, gf):
     return min(S[i, TC], t + dtx)
 
 
-@kernel
-def predict_disk(i, t, S, E, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy):
-    """Full prediction of disk ``i`` from time ``t``: all 9 neighbour cells, its cell's
-    walls and the box walls.  Keeps the best non-crossing candidate and schedules."""
+@njit(inline="always")
+def predict(i, t, direction, S, E, stamp, gi, gf, head, nxt,
+            wa, wb, wstart, wwall, wsx, wsy):
+    """Predict disk ``i``'s next event from time ``t``, keep its best non-crossing
+    candidate, and return the time of the scheduled event.
+
+    ``direction = -1``: a full prediction (all 9 neighbour cells, the walls listed for
+    its cell, the box walls).  ``direction`` 0-3: ``i`` has just crossed into its
+    current cell (not wrapped) in direction +x, -x, +y, -y; if its kept candidate is
+    still valid only the newly exposed row of 3 cells (and the cell's walls) is
+    scanned against it, otherwise the prediction is a full one.
+
+    (One function for both, called from one place in the loop: a second copy of the
+    scan would add about 1.5 s to the first compilation.)
+    """
+    partial = direction >= 0 and not (
+        E[i, KIND] & _KIND_MASK == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
     dt0 = t - S[i, T]
     vx = S[i, VX]
     vy = S[i, VY]
@@ -165,35 +180,51 @@ def predict_disk(i, t, S, E, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall, ws
     cy = c // gi[0]
     cx = c - cy * gi[0]
 
-    # The three rows of neighbour cells are far apart in memory: request all three
-    # at once instead of one after the other inside the scan.
-    for oy in range(-1, 2):
-        nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
-        if nyc >= 0:
-            prefetch(head, max(cx - 1, 0) + gi[0] * nyc)
-    best = INF
-    kind = NONE
+    if partial:
+        if direction == 0:
+            ox0, ox1, oy0, oy1 = 1, 1, -1, 1
+        elif direction == 1:
+            ox0, ox1, oy0, oy1 = -1, -1, -1, 1
+        elif direction == 2:
+            ox0, ox1, oy0, oy1 = -1, 1, 1, 1
+        else:
+            ox0, ox1, oy0, oy1 = -1, 1, -1, -1
+        best = S[i, TC] - t
+        kind = NONE  # stays NONE unless something beats the kept candidate
+        aux = 0
+    else:
+        ox0, ox1, oy0, oy1 = -1, 1, -1, 1
+        # The three rows of neighbour cells are far apart in memory: request all
+        # three at once instead of one after the other inside the scan.
+        for oy in range(-1, 2):
+            nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
+            if nyc >= 0:
+                prefetch(head, max(cx - 1, 0) + gi[0] * nyc)
+        best = INF
+        kind = NONE
+        aux = 0
+        if gi[2] == 0:
+            dtw, side = box_wall_time(x, vx, r, gf[0])
+            if dtw < best:
+                best = dtw
+                kind = BOX
+                aux = side
+        if gi[3] == 0:
+            dtw, side = box_wall_time(y, vy, r, gf[1])
+            if dtw < best:
+                best = dtw
+                kind = BOX
+                aux = 2 + side
     partner = -1
-    aux = 0
-    if gi[2] == 0:
-        dtw, side = box_wall_time(x, vx, r, gf[0])
-        if dtw < best:
-            best = dtw
-            kind = BOX
-            aux = side
-    if gi[3] == 0:
-        dtw, side = box_wall_time(y, vy, r, gf[1])
-        if dtw < best:
-            best = dtw
-            kind = BOX
-            aux = 2 + side
-    bd, pd, ad, pst = _scan_disks(i, t, x, y, vx, vy, r, cx, cy, -1, 1, -1, 1,
-                                  S, stamp, gi, gf, head, nxt, best, -1, 0, 0)
+    pst = 0
+    bd, pd, ad, ps = _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
+                                 S, stamp, gi, gf, head, nxt, best, -1, 0, 0)
     if bd < best:
         best = bd
         kind = DISK
         partner = pd
         aux = ad
+        pst = ps
     bw, pw, aw = _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy,
                              best, -1, 0)
     if bw < best:
@@ -201,69 +232,14 @@ def predict_disk(i, t, S, E, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall, ws
         kind = SEGMENT
         partner = pw
         aux = aw
-    S[i, TC] = t + best
-    E[i, KIND] = kind
-    E[i, PARTNER] = partner
-    E[i, AUX] = aux
-    E[i, PSTAMP] = pst if kind == DISK else 0
-    return _schedule(i, t, x, y, vx, vy, cx, cy, S, E, gi, gf)
-
-
-@kernel
-def predict_after_crossing(i, t, direction, S, E, stamp, gi, gf, head, nxt,
-                           wa, wb, wstart, wwall, wsx, wsy):
-    """Disk ``i`` (at time ``t``, already in its new cell, not wrapped) crossed in
-    ``direction`` (0:+x 1:-x 2:+y 3:-y): scan only the newly exposed row of cells and
-    return the new event time, or -1 if the kept candidate is stale and a full
-    prediction is needed."""
-    if E[i, KIND] & _KIND_MASK == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP]:
-        return -1.0
-    vx = S[i, VX]
-    vy = S[i, VY]
-    x = S[i, X]  # advanced to t by the caller
-    y = S[i, Y]
-    r = S[i, R]
-    c = E[i, CELL]
-    cy = c // gi[0]
-    cx = c - cy * gi[0]
-    if direction == 0:
-        ox0, ox1, oy0, oy1 = 1, 1, -1, 1
-    elif direction == 1:
-        ox0, ox1, oy0, oy1 = -1, -1, -1, 1
-    elif direction == 2:
-        ox0, ox1, oy0, oy1 = -1, 1, 1, 1
-    else:
-        ox0, ox1, oy0, oy1 = -1, 1, -1, -1
-    best = S[i, TC] - t
-    bd, pd, ad, pst = _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
-                                  S, stamp, gi, gf, head, nxt, best, -1, 0, 0)
-    if bd < best:
-        best = bd
-        S[i, TC] = t + bd
-        E[i, KIND] = DISK
-        E[i, PARTNER] = pd
-        E[i, AUX] = ad
+        pst = 0
+    if not partial or kind != NONE:
+        S[i, TC] = t + best
+        E[i, KIND] = kind
+        E[i, PARTNER] = partner
+        E[i, AUX] = aux
         E[i, PSTAMP] = pst
-    bw, pw, aw = _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy,
-                             best, -1, 0)
-    if bw < best:
-        S[i, TC] = t + bw
-        E[i, KIND] = SEGMENT
-        E[i, PARTNER] = pw
-        E[i, AUX] = aw
-        E[i, PSTAMP] = 0
     return _schedule(i, t, x, y, vx, vy, cx, cy, S, E, gi, gf)
-
-
-@njit
-def predict_all(t, S, E, stamp, gi, gf, head, nxt,
-                wa, wb, wstart, wwall, wsx, wsy, qt, hv, qhead, qs, qf):
-    """Predict every disk's next event from time ``t`` and rebuild the queue."""
-    times = np.empty(S.shape[0])
-    for i in range(S.shape[0]):
-        times[i] = predict_disk(i, t, S, E, stamp, gi, gf, head, nxt,
-                                wa, wb, wstart, wwall, wsx, wsy)
-    queue.build(t, times, qt, E, hv, qhead, qs, qf)
 
 
 @njit(inline="always")
@@ -289,8 +265,13 @@ def run(t_end, max_collisions, max_events,
         S, E, stamp, image, gi, gf, head, nxt, prv,
         wa, wb, wstart, wwall, wsx, wsy,
         qt, hv, qhead, qs, qf,
-        counts, acc, out, info, log_t, log_e, log_n, order):
-    """Process events in time order.
+        counts, acc, out, info, log_t, log_e, log_n, order, mode):
+    """Process events in time order (``mode`` RUN_EVENTS), or (``mode`` PREDICT_ALL)
+    predict every disk's next event from the time ``out[0]`` and rebuild the queue.
+
+    (Both share the one place where the full prediction is compiled into this
+    function: inlined, it is about 18 % faster than a call, and a second copy would
+    add about 4 s to the first compilation.)
 
     Stops before the first event later than ``t_end``, right after the
     ``max_collisions``-th disk-disk collision of this call, or after ``max_events``
@@ -311,200 +292,215 @@ def run(t_end, max_collisions, max_events,
     n_coll = 0
     n_ev = 0
     status = REACHED_TIME
+    t = out[0]
+    i = -1
+    kind = NONE
+    partner = -1
+    aux = 0
+    redo0 = -1
+    redo1 = -1
+    direction = -1
+    stale = False
     while True:
-        i = queue.top(qt, E, hv, qhead, qs, qf)
-        if i < 0:
-            status = NO_EVENTS
-            break
-        t = qt[i]
-        # The next events are most likely those of the heap root's children: start
-        # loading their rows now (at large N each is a cache miss otherwise).
-        if qs[queue.NHEAP] > 1:
-            k = hv[1]
-            prefetch(S, k)
-            prefetch(E, k)
-            if qs[queue.NHEAP] > 2:
-                k = hv[2]
+        if mode == PREDICT_ALL:
+            npred = S.shape[0]
+        else:
+            i = queue.top(qt, E, hv, qhead, qs, qf)
+            if i < 0:
+                status = NO_EVENTS
+                break
+            t = qt[i]
+            # The next events are most likely those of the heap root's children: start
+            # loading their rows now (at large N each is a cache miss otherwise).
+            if qs[queue.NHEAP] > 1:
+                k = hv[1]
                 prefetch(S, k)
                 prefetch(E, k)
-        if t > t_end:
-            status = REACHED_TIME
-            break
-        if n_ev >= max_events:
-            status = REACHED_EVENT_LIMIT
-            break
-        if t < S[i, TC]:
-            kind = CROSS
-            partner = -1
-            aux = E[i, KIND] >> 4
-        else:
-            kind = E[i, KIND] & _KIND_MASK
-            partner = E[i, PARTNER]
-            aux = E[i, AUX]
-        # Disks whose events must be predicted afresh once this event is handled.
-        # (One call site for the full prediction keeps the compiled loop small.  Marking
-        # predict_disk inline="always" measured 1.04 -> 1.14 M collisions/s at N=10^4,
-        # packing 0.5, but cold compilation 8.6 -> 13.5 s (12 s if only this site
-        # inlines it), over the 10 s target; it is left a plain call.)
-        redo0 = -1
-        redo1 = -1
-        known = -1.0  # the new event time of i if already known (after a crossing)
-        stale = False
+                if qs[queue.NHEAP] > 2:
+                    k = hv[2]
+                    prefetch(S, k)
+                    prefetch(E, k)
+            if t > t_end:
+                status = REACHED_TIME
+                break
+            if n_ev >= max_events:
+                status = REACHED_EVENT_LIMIT
+                break
+            if t < S[i, TC]:
+                kind = CROSS
+                partner = -1
+                aux = E[i, KIND] >> 4
+            else:
+                kind = E[i, KIND] & _KIND_MASK
+                partner = E[i, PARTNER]
+                aux = E[i, AUX]
+            # Disks whose events must be predicted afresh once this event is handled.
+            # (One call site for the full prediction keeps the compiled loop small.  Marking
+            # predict_disk inline="always" measured 1.04 -> 1.14 M collisions/s at N=10^4,
+            # packing 0.5, but cold compilation 8.6 -> 13.5 s (12 s if only this site
+            # inlines it), over the 10 s target; it is left a plain call.)
+            redo0 = -1
+            redo1 = -1
+            direction = -1  # of a cell crossing of i, for a partial prediction
+            stale = False
 
-        if kind == DISK:
-            j = partner
-            if stamp[j] != E[i, PSTAMP]:
-                # The partner changed course since this was predicted: re-predict i only.
-                redo0 = i
-                stale = True
-            elif S[i, INVM] == 0.0 and S[j, INVM] == 0.0:
-                info[0] = i
-                info[1] = j
-                status = ERR_IMMOVABLE_PAIR
-                break
-            else:
+            if kind == DISK:
+                j = partner
+                if stamp[j] != E[i, PSTAMP]:
+                    # The partner changed course since this was predicted: re-predict i only.
+                    redo0 = i
+                    stale = True
+                elif S[i, INVM] == 0.0 and S[j, INVM] == 0.0:
+                    info[0] = i
+                    info[1] = j
+                    status = ERR_IMMOVABLE_PAIR
+                    break
+                else:
+                    _advance(i, t, S)
+                    _advance(j, t, S)
+                    sx = aux // 3 - 1
+                    sy = aux % 3 - 1
+                    dx = S[i, X] - (S[j, X] + sx * width)
+                    dy = S[i, Y] - (S[j, Y] + sy * height)
+                    dist = math.sqrt(dx * dx + dy * dy)
+                    nx = dx / dist
+                    ny = dy / dist
+                    dvn = (S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny
+                    if dvn < 0.0:
+                        # Impulse J along n: momentum J n moves from j to i; with the reduced
+                        # mass this reverses the normal relative velocity (elastic).
+                        wi = S[i, INVM]
+                        wj = S[j, INVM]
+                        impulse = -2.0 * dvn / (wi + wj)
+                        S[i, VX] += impulse * wi * nx
+                        S[i, VY] += impulse * wi * ny
+                        S[j, VX] -= impulse * wj * nx
+                        S[j, VY] -= impulse * wj * ny
+                        jr = impulse * dist
+                        acc[A_VIRIAL] += jr
+                        acc[A_VIRIAL_XX] += jr * nx * nx
+                        acc[A_VIRIAL_YY] += jr * ny * ny
+                    # A contact that rounding left not approaching exchanges nothing but is a
+                    # processed contact event like any other (as for walls, and as in the
+                    # reference): counted, logged, both disks re-predicted.
+                    counts[C_COLLISIONS] += 1
+                    n_coll += 1
+                    stamp[i] += 1
+                    stamp[j] += 1
+                    redo0 = i
+                    redo1 = j
+            elif kind == SEGMENT or kind == BOX:
+                if S[i, INVM] == 0.0:
+                    info[0] = i
+                    info[1] = partner if kind == SEGMENT else -1 - aux
+                    status = ERR_IMMOVABLE_WALL
+                    break
                 _advance(i, t, S)
-                _advance(j, t, S)
-                sx = aux // 3 - 1
-                sy = aux % 3 - 1
-                dx = S[i, X] - (S[j, X] + sx * width)
-                dy = S[i, Y] - (S[j, Y] + sy * height)
-                dist = math.sqrt(dx * dx + dy * dy)
-                nx = dx / dist
-                ny = dy / dist
-                dvn = (S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny
-                if dvn < 0.0:
-                    # Impulse J along n: momentum J n moves from j to i; with the reduced
-                    # mass this reverses the normal relative velocity (elastic).
-                    wi = S[i, INVM]
-                    wj = S[j, INVM]
-                    impulse = -2.0 * dvn / (wi + wj)
-                    S[i, VX] += impulse * wi * nx
-                    S[i, VY] += impulse * wi * ny
-                    S[j, VX] -= impulse * wj * nx
-                    S[j, VY] -= impulse * wj * ny
-                    jr = impulse * dist
-                    acc[A_VIRIAL] += jr
-                    acc[A_VIRIAL_XX] += jr * nx * nx
-                    acc[A_VIRIAL_YY] += jr * ny * ny
-                # A contact that rounding left not approaching exchanges nothing but is a
-                # processed contact event like any other (as for walls, and as in the
-                # reference): counted, logged, both disks re-predicted.
-                counts[C_COLLISIONS] += 1
-                n_coll += 1
-                stamp[i] += 1
-                stamp[j] += 1
-                redo0 = i
-                redo1 = j
-        elif kind == SEGMENT or kind == BOX:
-            if S[i, INVM] == 0.0:
-                info[0] = i
-                info[1] = partner if kind == SEGMENT else -1 - aux
-                status = ERR_IMMOVABLE_WALL
-                break
-            _advance(i, t, S)
-            if kind == BOX:
-                # Lower wall: normal +e; upper wall: normal -e.
-                sign = 1.0 if aux % 2 == 0 else -1.0
-                if aux < 2:
-                    _reflect(i, sign, 0.0, S, acc, A_BOX + aux)
+                if kind == BOX:
+                    # Lower wall: normal +e; upper wall: normal -e.
+                    sign = 1.0 if aux % 2 == 0 else -1.0
+                    if aux < 2:
+                        _reflect(i, sign, 0.0, S, acc, A_BOX + aux)
+                    else:
+                        _reflect(i, 0.0, sign, S, acc, A_BOX + aux)
                 else:
-                    _reflect(i, 0.0, sign, S, acc, A_BOX + aux)
-            else:
-                part = aux % 3
-                code = aux // 3
-                shx = (code // 3 - 1) * width
-                shy = (code % 3 - 1) * height
-                ax = wa[partner, 0] + shx
-                ay = wa[partner, 1] + shy
-                bx = wb[partner, 0] + shx
-                by = wb[partner, 1] + shy
-                if part == 0:
-                    ux = bx - ax
-                    uy = by - ay
-                    ln = math.sqrt(ux * ux + uy * uy)
-                    nx = -uy / ln
-                    ny = ux / ln
-                    if (S[i, X] - ax) * nx + (S[i, Y] - ay) * ny < 0.0:
-                        nx = -nx
-                        ny = -ny
-                else:
-                    ex = ax if part == 1 else bx
-                    ey = ay if part == 1 else by
-                    nx = S[i, X] - ex
-                    ny = S[i, Y] - ey
-                    ln = math.sqrt(nx * nx + ny * ny)
-                    nx /= ln
-                    ny /= ln
-                _reflect(i, nx, ny, S, acc, A_SEGMENTS)
-            stamp[i] += 1
-            redo0 = i
-            counts[C_WALL] += 1
-        else:  # CROSS
-            _advance(i, t, S)
-            c = E[i, CELL]
-            cy = c // ncx
-            cx = c - cy * ncx
-            wrapped = False
-            if aux == 0:
-                cx += 1
-                if cx == ncx:
-                    cx = 0
-                    S[i, X] -= width
-                    image[i, 0] += 1
-                    wrapped = True
-            elif aux == 1:
-                cx -= 1
-                if cx < 0:
-                    cx = ncx - 1
-                    S[i, X] += width
-                    image[i, 0] -= 1
-                    wrapped = True
-            elif aux == 2:
-                cy += 1
-                if cy == ncy:
-                    cy = 0
-                    S[i, Y] -= height
-                    image[i, 1] += 1
-                    wrapped = True
-            else:
-                cy -= 1
-                if cy < 0:
-                    cy = ncy - 1
-                    S[i, Y] += height
-                    image[i, 1] -= 1
-                    wrapped = True
-            remove(i, c, head, nxt, prv)
-            c = cx + ncx * cy
-            insert(i, c, head, nxt, prv)
-            E[i, CELL] = c
-            if wrapped:
-                # Other disks' predictions hold i's image shift: invalidate them, and
-                # the kept candidate of i is in the old frame: predict afresh.
+                    part = aux % 3
+                    code = aux // 3
+                    shx = (code // 3 - 1) * width
+                    shy = (code % 3 - 1) * height
+                    ax = wa[partner, 0] + shx
+                    ay = wa[partner, 1] + shy
+                    bx = wb[partner, 0] + shx
+                    by = wb[partner, 1] + shy
+                    if part == 0:
+                        ux = bx - ax
+                        uy = by - ay
+                        ln = math.sqrt(ux * ux + uy * uy)
+                        nx = -uy / ln
+                        ny = ux / ln
+                        if (S[i, X] - ax) * nx + (S[i, Y] - ay) * ny < 0.0:
+                            nx = -nx
+                            ny = -ny
+                    else:
+                        ex = ax if part == 1 else bx
+                        ey = ay if part == 1 else by
+                        nx = S[i, X] - ex
+                        ny = S[i, Y] - ey
+                        ln = math.sqrt(nx * nx + ny * ny)
+                        nx /= ln
+                        ny /= ln
+                    _reflect(i, nx, ny, S, acc, A_SEGMENTS)
                 stamp[i] += 1
                 redo0 = i
-            else:
-                t_new = predict_after_crossing(i, t, aux, S, E, stamp, gi, gf, head, nxt,
-                                               wa, wb, wstart, wwall, wsx, wsy)
-                if t_new < 0.0:
+                counts[C_WALL] += 1
+            else:  # CROSS
+                _advance(i, t, S)
+                c = E[i, CELL]
+                cy = c // ncx
+                cx = c - cy * ncx
+                wrapped = False
+                if aux == 0:
+                    cx += 1
+                    if cx == ncx:
+                        cx = 0
+                        S[i, X] -= width
+                        image[i, 0] += 1
+                        wrapped = True
+                elif aux == 1:
+                    cx -= 1
+                    if cx < 0:
+                        cx = ncx - 1
+                        S[i, X] += width
+                        image[i, 0] -= 1
+                        wrapped = True
+                elif aux == 2:
+                    cy += 1
+                    if cy == ncy:
+                        cy = 0
+                        S[i, Y] -= height
+                        image[i, 1] += 1
+                        wrapped = True
+                else:
+                    cy -= 1
+                    if cy < 0:
+                        cy = ncy - 1
+                        S[i, Y] += height
+                        image[i, 1] -= 1
+                        wrapped = True
+                remove(i, c, head, nxt, prv)
+                c = cx + ncx * cy
+                insert(i, c, head, nxt, prv)
+                E[i, CELL] = c
+                if wrapped:
+                    # Other disks' predictions hold i's image shift: invalidate them, and
+                    # the kept candidate of i is in the old frame: predict afresh.
+                    stamp[i] += 1
                     redo0 = i
                 else:
-                    known = t_new
-            counts[C_CROSSINGS] += 1
+                    redo0 = i
+                    direction = aux
+                counts[C_CROSSINGS] += 1
 
-        # (One call site each for the prediction and the queue update: set_time is
-        # inlined here, and a second copy would lengthen compilation.)
-        for k in range(2):
-            d = redo0 if k == 0 else redo1
-            if d >= 0:
-                t_new = predict_disk(d, t, S, E, stamp, gi, gf, head, nxt,
-                                     wa, wb, wstart, wwall, wsx, wsy)
-            elif k == 0 and known >= 0.0:
-                d = i
-                t_new = known
+            npred = 0 if redo0 < 0 else (1 if redo1 < 0 else 2)
+
+        # (One call site each for the prediction and the queue update: both are
+        # compiled into the loop, and a second copy would lengthen compilation.)
+        for k in range(npred):
+            if mode == PREDICT_ALL:
+                d = k
+                dk = -1
             else:
-                continue
-            queue.set_time(d, t_new, qt, E, hv, qhead, qs, qf)
+                d = redo0 if k == 0 else redo1
+                dk = direction if k == 0 else -1
+            t_new = predict(d, t, dk, S, E, stamp, gi, gf, head, nxt,
+                            wa, wb, wstart, wwall, wsx, wsy)
+            if mode == PREDICT_ALL:
+                qt[d] = t_new
+            else:
+                queue.set_time(d, t_new, qt, E, hv, qhead, qs, qf)
+        if mode == PREDICT_ALL:
+            queue.build(t, qt, qt, E, hv, qhead, qs, qf)
+            break
         if stale:
             counts[C_STALE] += 1
             continue

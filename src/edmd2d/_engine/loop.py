@@ -335,10 +335,6 @@ def run(t_end, max_collisions, max_events,
                 partner = E[i, PARTNER]
                 aux = E[i, AUX]
             # Disks whose events must be predicted afresh once this event is handled.
-            # (One call site for the full prediction keeps the compiled loop small.  Marking
-            # predict_disk inline="always" measured 1.04 -> 1.14 M collisions/s at N=10^4,
-            # packing 0.5, but cold compilation 8.6 -> 13.5 s (12 s if only this site
-            # inlines it), over the 10 s target; it is left a plain call.)
             redo0 = -1
             redo1 = -1
             direction = -1  # of a cell crossing of i, for a partial prediction

@@ -183,7 +183,7 @@ class Simulation:
         self._gf = np.array([width, height, width / ncx, height / ncy], np.float64)
 
         # Per-disk state, one 64-byte row each (see _engine/loop.py for the columns).
-        state = _aligned_rows(n)
+        state = aligned_rows(n, _loop.N_STATE, np.float64)  # 64-byte rows, aligned
         state[:, _loop.X:_loop.Y + 1] = pos
         state[:, _loop.VX:_loop.VY + 1] = vel
         state[:, _loop.T] = float(t0)
@@ -320,7 +320,7 @@ class Simulation:
                                    len(self._cell_rank))
         inv = np.empty_like(perm)
         inv[perm] = np.arange(len(perm))
-        state = _aligned_rows(len(perm))
+        state = aligned_rows(len(perm), _loop.N_STATE, np.float64)
         state[:] = self._S[perm]
         queue = _queue.allocate(len(perm))
         table = queue[1]
@@ -576,12 +576,6 @@ class Simulation:
              int(self._log_e[m, 1]), int(self._log_e[m, 2]))
             for m in range(k)
         ]
-
-
-def _aligned_rows(n: int) -> np.ndarray:
-    """An uninitialised (n, 8) float64 state table whose 64-byte rows start on 64-byte
-    boundaries, so that reading one disk's state touches one cache line."""
-    return aligned_rows(n, _loop.N_STATE, np.float64)
 
 
 def _as_walls(walls) -> list[Wall]:

@@ -292,6 +292,7 @@ def run(t_end, max_collisions, max_events,
     n_ev = 0
     status = REACHED_TIME
     t = out[0]
+    # (Set per event below; defined here too because PREDICT_ALL skips that part.)
     i = -1
     kind = NONE
     partner = -1

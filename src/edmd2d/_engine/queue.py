@@ -31,12 +31,13 @@ Arrays (``N`` disks):
 ``qs`` (int64) and ``qf`` (float64)
     the scalars below.
 
-The bucket width adapts: it is chosen at :func:`build` from the (trimmed) mean time to the
-next event, and whenever about two years' worth of operations show the buckets holding
-on average more than 8x or less than 1/8x the target of two events, every queued event
-is re-placed with a width scaled to match (O(N), amortised over at least ``2 nb``
-operations).  When the heap and all lists of the year are empty the calendar jumps:
-it restarts at the earliest overflow event instead of stepping through empty buckets.
+The bucket width adapts: it is chosen at :func:`build` from the (trimmed) mean time to
+the next event.  Every ``2 nb`` heap insertions plus bucket steps the occupancy is
+checked: if the buckets held on average more than 8x or less than 1/8 of the target of
+two events, every queued event is re-placed with a width scaled to match (O(N),
+amortised over those ``2 nb`` operations).  When the heap and all lists of the year
+are empty the calendar jumps: it restarts at the earliest overflow event instead of
+stepping through empty buckets.
 """
 
 from __future__ import annotations

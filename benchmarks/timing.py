@@ -31,15 +31,7 @@ def engine_array_bytes(sim) -> int:
     API.  Everything the engine needs between events lives in these arrays, so their
     total is the engine's memory footprint.
     """
-    roots = {}
-    for v in vars(sim).values():
-        if isinstance(v, np.ndarray):
-            # Count each buffer once: several arrays are views of one allocation (the
-            # queue times of the per-disk table, rows aligned inside a larger buffer).
-            while isinstance(v.base, np.ndarray):
-                v = v.base
-            roots[id(v)] = v.nbytes
-    return int(sum(roots.values()))
+    return int(sum(v.nbytes for v in vars(sim).values() if isinstance(v, np.ndarray)))
 
 
 def count_delta(before, after) -> dict:

@@ -44,7 +44,6 @@ def test_same_events_and_final_state_as_reference(seed, periodic, walls_kind):
         mass[0] = np.inf
         vel[0] = 0.0
     sim = ed.Simulation(pos, vel, rad, mass, box=box, walls=walls)
-    sim._lookahead = seed % 2 == 1  # the prefetching of large systems, forced on
     sim._record_events(10_000)
     ref = ReferenceSimulation(pos, vel, rad, mass, box=box, walls=walls)
     # The horizon keeps the chaotic growth of rounding differences (a factor ~2-10 per

@@ -19,28 +19,7 @@ import edmd2d as ed
 from edmd2d._engine import queue as q
 
 
-def list_disks(qb, home):
-    """The disks of the year list with home block ``home``, in position order."""
-    m = int(qb[home, q.B_COUNT])
-    out, k = [], home
-    while True:
-        out += [int(d) for d in qb[k, q.B_IDS:q.B_IDS + min(m - len(out), q.B_CAP)]]
-        if len(out) == m:
-            assert qb[k, q.B_NEXT] == -1, "a list keeps no empty block"
-            return out
-        assert len(out) % q.B_CAP == 0, "all blocks but the last are full"
-        k = int(qb[k, q.B_NEXT])
-
-
-def chain(qb, k):
-    blocks = []
-    while k >= 0:
-        blocks.append(k)
-        k = int(qb[k, q.B_NEXT])
-    return blocks
-
-
-def check_queue(qt, ql, hv, qb, qs, qf):
+def check_queue(qt, ql, hv, qhead, qs, qf):
     """Assert every structural invariant of the queue; return the set of queued disks."""
     n = len(qt)
     nb = int(qs[q.MASK]) + 1
@@ -57,37 +36,26 @@ def check_queue(qt, ql, hv, qb, qs, qf):
         if k:
             p = int(hv[(k - 1) // 2])
             assert (qt[p], p) < (qt[d], d), "heap order"
-    used = []
-    nlist = 0
-    for home in range(nb):
-        for d in list_disks(qb, home):
+    counts = [0, 0]
+    for lst in range(nb + 1):
+        d, prev = int(qhead[lst]), -1
+        while d >= 0:
             assert d not in seen
-            seen[d] = home
-            assert ql[d, q.LOC] == q.IN_YEAR
-            b = math.floor((float(qt[d]) - origin) * invw)
-            assert cur < b < cur + nb and b % nb == home
-            nlist += 1
-        used += chain(qb, home)[1:]
-    assert nlist == qs[q.NLIST]
-    # The overflow: lazy, so stale and repeated entries are allowed, but every disk
-    # marked as in it has an entry there.
-    over = chain(qb, int(qs[q.OVER]))
-    used += over
-    entries = {int(d) for k in over for d in qb[k, q.B_IDS:q.B_IDS + qb[k, q.B_COUNT]]}
-    assert all(1 <= qb[k, q.B_COUNT] <= q.B_CAP for k in over)
-    live = [d for d in range(n) if ql[d, q.LOC] == q.IN_OVERFLOW]
-    assert len(live) == qs[q.NOVER]
-    for d in live:
-        assert d in entries and d not in seen
-        seen[d] = "overflow"
-        assert (float(qt[d]) - origin) * invw >= qs[q.BOUNDARY]
-    # Every pool block is used exactly once or free.
-    free = chain(qb, int(qs[q.FREE]))
-    assert sorted(used + free) == list(range(nb, len(qb)))
+            seen[d] = lst
+            assert ql[d, q.LOC] == -2 - lst and ql[d, q.PREV] == prev
+            x = (float(qt[d]) - origin) * invw
+            if lst < nb:
+                b = math.floor(x)
+                assert cur < b < cur + nb and b % nb == lst
+            else:
+                assert x >= qs[q.BOUNDARY]
+            counts[lst == nb] += 1
+            prev, d = d, int(ql[d, q.NEXT])
+    assert counts == [qs[q.NLIST], qs[q.NOVER]]
     for d in range(n):
         assert (d in seen) == (qt[d] < np.inf)
         if d not in seen:
-            assert ql[d, q.LOC] == q.NOT_QUEUED
+            assert ql[d, q.LOC] == -1
     return set(seen)
 
 
@@ -104,7 +72,7 @@ def drive(n, now, times, updates):
     reference after every step."""
     arrays = q.allocate(n)
     qt = arrays[0]
-    q.build(now, np.asarray(times, float), *arrays, 0.0)
+    q.build(now, np.asarray(times, float), *arrays)
     check_queue(*arrays)
     for disk, dt, pop in updates:
         top = q.top(*arrays)
@@ -150,7 +118,7 @@ def test_rate_change_retunes_bucket_width():
     n = 300
     arrays = q.allocate(n)
     qt, qf = arrays[0], arrays[5]
-    q.build(0.0, rng.exponential(1.0, n), *arrays, 0.0)
+    q.build(0.0, rng.exponential(1.0, n), *arrays)
     for scale in (1e-4, 1e4):
         now = qt[q.top(*arrays)]
         for i in range(n):
@@ -188,61 +156,3 @@ def test_engine_queue_consistent_during_runs(n):
         arrays = sim._queue_args()
         check_queue(*arrays)
         assert q.top(*arrays) == earliest(arrays[0])
-
-
-def test_crowded_bucket_chains_blocks_and_returns_them():
-    # 100 disks due at one later instant share a year list of 8 blocks; taking them
-    # out in a scrambled order must keep the list packed and give every block back.
-    n = 101
-    times = np.full(n, 5.0)
-    times[0] = 0.0  # keeps the calendar's start at 0
-    arrays = q.allocate(n)
-    qt, qb = arrays[0], arrays[3]
-    q.build(0.0, times, *arrays, 0.0)
-    assert q.top(*arrays) == 0
-    q.set_time(0, 0.0, *arrays)
-    home = int(math.floor(5.0 * arrays[5][q.INVW])) & int(arrays[4][q.MASK])
-    assert len(chain(qb, home)) == math.ceil(100 / q.B_CAP)
-    check_queue(*arrays)
-    rng = np.random.default_rng(3)
-    for d in rng.permutation(np.arange(1, n)):
-        q.set_time(int(d), 1e9 if d % 2 else math.inf, *arrays)
-        check_queue(*arrays)
-    assert chain(qb, home) == [home]
-    assert q.top(*arrays) == 0
-    q.set_time(0, math.inf, *arrays)
-    order = [q.top(*arrays)]
-    while order[-1] >= 0:
-        q.set_time(order[-1], math.inf, *arrays)
-        order.append(q.top(*arrays))
-    assert order[:-1] == list(range(1, n, 2)) and (qt == np.inf).all()
-
-
-def test_overflow_compaction_when_pool_runs_short():
-    # Disks that keep leaving the overflow and coming back leave stale entries
-    # behind; once they would exhaust the block pool the overflow is compacted, and
-    # the order stays exact.
-    n = 30
-    arrays = q.allocate(n)
-    qt, qb, qs = arrays[0], arrays[3], arrays[4]
-    pool = len(qb) - int(qs[q.MASK]) - 1
-    q.build(0.0, np.linspace(1.0, 2.0, n), *arrays, 0.0)
-    width = 1 / arrays[5][q.INVW]
-    far = 10 * (qs[q.MASK] + 1) * width
-    rng = np.random.default_rng(5)
-    for step in range(30 * pool * q.B_CAP // n):
-        for d in rng.permutation(n):
-            # Alternately beyond the year and back inside it (but not in the heap).
-            q.set_time(int(d), (far if step % 2 else 3.0) + rng.random(), *arrays)
-        if step % 7 == 0:
-            check_queue(*arrays)
-    check_queue(*arrays)
-    assert q.top(*arrays) == earliest(qt)
-    # Pop everything: exact order, and only live disks come out, each once.
-    out = []
-    while (i := q.top(*arrays)) >= 0:
-        assert i == earliest(qt)
-        out.append(i)
-        q.set_time(i, math.inf, *arrays)
-    assert sorted(out) == list(range(n))
-    check_queue(*arrays)

@@ -199,8 +199,8 @@ class Simulation:
         # Image counters stay int64: a fast disk in a small periodic box can wrap more
         # than 2^31 times in a long run.
         self._image = np.zeros((n, 2), np.int64)
-        # E: the per-disk bookkeeping table (cell, kept candidate, queue place and time).
-        self._qt, self._E, self._hv, self._qb, self._qs, self._qf = _queue.allocate(n)
+        # E: the per-disk bookkeeping table (cell, kept candidate, queue links).
+        self._qt, self._E, self._hv, self._qhead, self._qs, self._qf = _queue.allocate(n)
         self._head = np.empty(ncx * ncy, idx)
         self._nxt = np.empty(n, idx)
         self._prv = np.empty(n, idx)
@@ -229,10 +229,9 @@ class Simulation:
             _REORDER_EVENTS_PER_DISK * n if n >= _REORDER_MIN_DISKS else np.iinfo(np.int64).max
         )
         self._since_reorder = 0
-        # Staged prefetching of the coming events' data pays once it misses the caches.
-        self._lookahead = n >= _loop.LOOKAHEAD_MIN_DISKS
+        self._cell_rank = _grid.morton_rank(ncx, ncy) if n >= _REORDER_MIN_DISKS else None
         self._predict_all()
-        if n >= _REORDER_MIN_DISKS:
+        if self._cell_rank is not None:
             self._reorder()
 
     # ------------------------------------------------------------------ validation
@@ -302,13 +301,13 @@ class Simulation:
         return _loop.run(
             t_end, max_collisions, max_events,
             self._S, self._E, self._stamp, self._image, *self._grid_args(), self._prv,
-            *self._wall_args(), self._qt, self._hv, self._qb, self._qs, self._qf,
+            *self._wall_args(), self._qt, self._hv, self._qhead, self._qs, self._qf,
             self._counts, self._acc, out, info, self._log_t, self._log_e,
-            self._log_n, self._order, mode, self._lookahead,
+            self._log_n, self._order, mode,
         )
 
     def _queue_args(self):
-        return (self._qt, self._E, self._hv, self._qb, self._qs, self._qf)
+        return (self._qt, self._E, self._hv, self._qhead, self._qs, self._qf)
 
     def _reorder(self) -> None:
         """Re-sort the internal rows along the Z-order of their cells (see module top).
@@ -317,10 +316,8 @@ class Simulation:
         interrupt cannot leave them half permuted.  The queue is rebuilt rather than
         renumbered, which keeps its tie order (time, then internal index) exact.
         """
-        # (The ranks are recomputed each time rather than held: O(cells), cheap next
-        # to the 20 N events between two re-sorts, and 4 bytes per cell less memory.)
-        rank = _grid.morton_rank(int(self._gi[0]), int(self._gi[1]))
-        perm = _grid.order_by_cell(self._E[:, _loop.CELL], rank, len(rank))
+        perm = _grid.order_by_cell(self._E[:, _loop.CELL], self._cell_rank,
+                                   len(self._cell_rank))
         inv = np.empty_like(perm)
         inv[perm] = np.arange(len(perm))
         state = aligned_rows(len(perm), _loop.N_STATE, np.float64)
@@ -332,11 +329,10 @@ class Simulation:
         table[disk, _loop.PARTNER] = inv[table[disk, _loop.PARTNER]]
         head, nxt, prv = (np.empty_like(a) for a in (self._head, self._nxt, self._prv))
         _grid.build_lists(table[:, _loop.CELL], head, nxt, prv)
-        # (The copied rows carry each disk's event time, qt being a view of E.)
-        _queue.build(self._time, queue[0], *queue, 0.0)
+        _queue.build(self._time, self._qt[perm], *queue)
         (self._S, self._mass, self._order, self._stamp, self._image,
          self._head, self._nxt, self._prv,
-         (self._qt, self._E, self._hv, self._qb, self._qs, self._qf), self._since_reorder) = (
+         (self._qt, self._E, self._hv, self._qhead, self._qs, self._qf), self._since_reorder) = (
             state, self._mass[perm], self._order[perm], self._stamp[perm],
             self._image[perm], head, nxt, prv, queue, 0)
 
@@ -466,14 +462,8 @@ class Simulation:
     @property
     def positions(self) -> np.ndarray:
         """Disk centres at :attr:`time`, shape (N, 2), a copy (wrapped into the box)."""
-        # (In numpy, not compiled: a first call then costs no compilation.)
-        S = self._S
-        dt = self._time - S[:, _loop.T]
-        out = S[:, _loop.X:_loop.Y + 1] + dt[:, None] * S[:, _loop.VX:_loop.VY + 1]
-        for axis in range(2):
-            if self._gi[2 + axis] != 0:
-                length = self._gf[axis]
-                out[:, axis] -= length * np.floor(out[:, axis] / length)
+        out = np.empty((len(self._S), 2))
+        _loop.synchronized_positions(self._time, self._S, self._gi, self._gf, out)
         return self._to_user(out)
 
     @property

@@ -153,12 +153,10 @@ def bucket_walls(wa, wb, gi, gf, reach):
     it meets.
     """
     ncell = int(gi[0] * gi[1])
-    empty = np.zeros(0, dtype=np.int64)
-    if wa.shape[0] == 0:
-        # Nothing to bucket, nothing to compile, and no per-cell array to hold: the
-        # engine never reads the lists when there are no walls.
-        return np.zeros(1, dtype=np.int32), empty, empty, empty
     start = np.zeros(ncell + 1, dtype=np.int32)  # per cell: keep it small
+    empty = np.zeros(0, dtype=np.int64)
+    if wa.shape[0] == 0:  # nothing to bucket (and nothing to compile)
+        return start, empty, empty, empty
     _bucket_walls(wa, wb, gi, gf, reach, start, empty, empty, empty, False)
     np.cumsum(start, out=start)
     total = int(start[-1])

@@ -6,12 +6,12 @@ State layout (struct of arrays, one row per disk):
 allocated 64-byte aligned: one cache line), ``stamp[i]`` (int32 invalidation counter),
 and the bookkeeping row ``E[i]`` (int32, 32 bytes, 32-byte aligned):
 
-``E[i] = (cell, kind, partner, aux, partner_stamp, loc, qt[i])``
+``E[i] = (cell, kind, partner, aux, partner_stamp, next, prev, loc)``
 
 ``kind, partner, aux, partner_stamp`` (with time ``S[i, TC]``) is the kept candidate
-``nc``: the best event that is *not* a cell crossing; ``loc`` is where disk ``i`` sits
-in the calendar queue (queue.py), and the last two columns hold its scheduled time
-``qt[i]`` (a float64 view).  The scheduled event is the cell crossing when ``qt[i] < S[i, TC]`` (its
+``nc``: the best event that is *not* a cell crossing; ``next, prev, loc`` are disk
+``i``'s links in the calendar queue (queue.py), which holds its scheduled time
+``qt[i]``.  The scheduled event is the cell crossing when ``qt[i] < S[i, TC]`` (its
 direction is kept in bits 4-5 of ``kind``), and ``nc`` otherwise.  What the loop needs
 about a disk thus sits in two rows instead of a cache line per array.
 
@@ -45,7 +45,7 @@ from .predict import INF, box_wall_time, exit_time, pair_time, segment_time
 X, Y, VX, VY, T, R, INVM, TC = 0, 1, 2, 3, 4, 5, 6, 7
 N_STATE = 8
 
-# Columns of E (the last three belong to the queue: LOC and the float64 qt)
+# Columns of E (the last three, NEXT, PREV and LOC, belong to the queue)
 CELL, KIND, PARTNER, AUX, PSTAMP = 0, 1, 2, 3, 4
 _KIND_MASK = 15  # low bits of E[:, KIND]; the bits above hold the crossing direction
 
@@ -76,12 +76,6 @@ N_ACC = 8
 # Modes of run(): process events, or predict every disk afresh and rebuild the queue
 RUN_EVENTS = 0
 PREDICT_ALL = 1
-
-# Systems at least this large prefetch in stages for the coming buckets (_lookahead,
-# switched on by the caller):
-# below, their data mostly sits in the caches and the prefetching costs more than it
-# saves (measured: a loss at N = 10^4, +15-25% at N = 10^5).
-LOOKAHEAD_MIN_DISKS = 1 << 16
 
 # Status codes returned by run()
 REACHED_TIME = 0
@@ -248,58 +242,6 @@ def predict(i, t, direction, S, E, stamp, gi, gf, head, nxt,
 
 
 @njit(inline="always")
-def _prefetch_heads(c, gi, head):
-    """Start loading the cell-list heads of the 3 rows of cells around cell ``c``
-    (clamped at the grid's edges rather than wrapped: a hint needs no exactness)."""
-    cy = c // gi[0]
-    x0 = max(c - cy * gi[0] - 1, 0)
-    for y in range(max(cy - 1, 0), min(cy + 2, gi[1])):
-        prefetch(head, x0 + gi[0] * y)
-
-
-@kernel
-def _lookahead(S, E, qt, hv, qb, qs, gi, head):
-    """Prefetch, in stages, what the events of the next buckets will read.
-
-    At large N each of these rows is a cache miss, and the loop would meet them one
-    after the other (a disk's row gives its cell and partner, the cell gives the
-    neighbours).  Each time the calendar moves to a new bucket, one stage runs for
-    each of the next three buckets, so every row is requested about one bucket (a few
-    events) before it is needed, and each stage reads only what the previous one
-    already brought in: the disks' own rows (two buckets ahead), their cells' list
-    heads and their partners' rows (one ahead), the first disk of each neighbour cell
-    and the partners' list heads (the bucket just loaded).  Hints only (cells are
-    clamped at the grid's edges, not wrapped): whatever changed meanwhile is read
-    correctly when it is used.
-    """
-    ncx = gi[0]
-    ncy = gi[1]
-    for k in range(min(qs[queue.NHEAP], queue.B_CAP)):
-        d = hv[k]
-        c = E[d, CELL]
-        cy = c // ncx
-        cx = c - cy * ncx
-        for y in range(max(cy - 1, 0), min(cy + 2, ncy)):
-            for x in range(max(cx - 1, 0), min(cx + 2, ncx)):
-                j = head[x + ncx * y]
-                if j >= 0:
-                    prefetch(S, j)
-        if qt[d] >= S[d, TC] and E[d, KIND] & _KIND_MASK == DISK:
-            _prefetch_heads(E[E[d, PARTNER], CELL], gi, head)
-    home, m = queue.upcoming(1, qb, qs)
-    for k in range(queue.B_IDS, queue.B_IDS + m):
-        d = qb[home, k]
-        _prefetch_heads(E[d, CELL], gi, head)
-        if qt[d] >= S[d, TC] and E[d, KIND] & _KIND_MASK == DISK:
-            prefetch(S, E[d, PARTNER])
-            prefetch(E, E[d, PARTNER])
-    home, m = queue.upcoming(2, qb, qs)
-    for k in range(queue.B_IDS, queue.B_IDS + m):
-        prefetch(S, qb[home, k])
-        prefetch(E, qb[home, k])
-
-
-@njit(inline="always")
 def _advance(i, t, S):
     dt = t - S[i, T]
     S[i, X] += dt * S[i, VX]
@@ -321,8 +263,8 @@ def _reflect(i, nx, ny, S, acc, slot):
 def run(t_end, max_collisions, max_events,
         S, E, stamp, image, gi, gf, head, nxt, prv,
         wa, wb, wstart, wwall, wsx, wsy,
-        qt, hv, qb, qs, qf,
-        counts, acc, out, info, log_t, log_e, log_n, order, mode, lookahead):
+        qt, hv, qhead, qs, qf,
+        counts, acc, out, info, log_t, log_e, log_n, order, mode):
     """Process events in time order (``mode`` RUN_EVENTS), or (``mode`` PREDICT_ALL)
     predict every disk's next event from the time ``out[0]`` and rebuild the queue.
 
@@ -340,9 +282,6 @@ def run(t_end, max_collisions, max_events,
     If ``log_t`` has room, every disk-disk, segment and box-wall event is recorded as
     ``log_t[k]``, ``log_e[k] = (kind, i, partner)`` with ``log_n[0]`` counting them all;
     disks are recorded by their user index ``order[i]``.
-
-    With ``lookahead`` the data of the coming events is prefetched (``_lookahead``;
-    chosen for systems of at least ``LOOKAHEAD_MIN_DISKS``).
     """
     ncx = gi[0]
     ncy = gi[1]
@@ -362,18 +301,14 @@ def run(t_end, max_collisions, max_events,
     redo1 = -1
     direction = -1
     stale = False
-    seen_bucket = -1
     while True:
         if mode == PREDICT_ALL:
             npred = S.shape[0]
         else:
-            i = queue.top(qt, E, hv, qb, qs, qf)
+            i = queue.top(qt, E, hv, qhead, qs, qf)
             if i < 0:
                 status = NO_EVENTS
                 break
-            if lookahead and qs[queue.CUR] != seen_bucket:
-                seen_bucket = qs[queue.CUR]
-                _lookahead(S, E, qt, hv, qb, qs, gi, head)
             t = qt[i]
             # The next events are most likely those of the heap root's children: start
             # loading their rows now (at large N each is a cache miss otherwise).
@@ -407,8 +342,6 @@ def run(t_end, max_collisions, max_events,
 
             if kind == DISK:
                 j = partner
-                # j leaves its list below: start loading that list's block now.
-                queue.prefetch_list(qt[j], qb, qs, qf)
                 if stamp[j] != E[i, PSTAMP]:
                     # The partner changed course since this was predicted: re-predict i only.
                     redo0 = i
@@ -548,10 +481,6 @@ def run(t_end, max_collisions, max_events,
 
         # (One call site each for the prediction and the queue update: both are
         # compiled into the loop, and a second copy would lengthen compilation.)
-        # All predictions first, then the queue updates: the list blocks the new times
-        # go to are requested while the next prediction runs.
-        t_new0 = INF
-        t_new1 = INF
         for k in range(npred):
             if mode == PREDICT_ALL:
                 d = k
@@ -564,17 +493,9 @@ def run(t_end, max_collisions, max_events,
             if mode == PREDICT_ALL:
                 qt[d] = t_new
             else:
-                queue.prefetch_list(t_new, qb, qs, qf)
-                if k == 0:
-                    t_new0 = t_new
-                else:
-                    t_new1 = t_new
-        if mode == RUN_EVENTS:
-            for k in range(npred):
-                d = redo0 if k == 0 else redo1
-                queue.set_time(d, t_new0 if k == 0 else t_new1, qt, E, hv, qb, qs, qf)
+                queue.set_time(d, t_new, qt, E, hv, qhead, qs, qf)
         if mode == PREDICT_ALL:
-            queue.build(t, qt, qt, E, hv, qb, qs, qf, 0.0)
+            queue.build(t, qt, qt, E, hv, qhead, qs, qf)
             break
         if stale:
             counts[C_STALE] += 1
@@ -597,3 +518,18 @@ def run(t_end, max_collisions, max_events,
             status = REACHED_COLLISIONS
             break
     return status
+
+
+@njit
+def synchronized_positions(t, S, gi, gf, out):
+    """Positions of all disks at time ``t`` (>= every local time), wrapped into the box."""
+    for i in range(S.shape[0]):
+        dt = t - S[i, T]
+        x = S[i, X] + dt * S[i, VX]
+        y = S[i, Y] + dt * S[i, VY]
+        if gi[2] != 0:
+            x -= gf[0] * math.floor(x / gf[0])
+        if gi[3] != 0:
+            y -= gf[1] * math.floor(y / gf[1])
+        out[i, 0] = x
+        out[i, 1] = y

@@ -242,6 +242,21 @@ def predict(i, t, direction, S, E, stamp, gi, gf, head, nxt,
 
 
 @njit(inline="always")
+def _step_cell(c, up, n):
+    """The cell index one step up (``up``) or down an axis of ``n`` cells, and the
+    periodic wrap that step makes: +1 past the far edge, -1 past the near one, else 0."""
+    if up:
+        c += 1
+        if c == n:
+            return 0, 1
+    else:
+        c -= 1
+        if c < 0:
+            return n - 1, -1
+    return c, 0
+
+
+@njit(inline="always")
 def _advance(i, t, S):
     dt = t - S[i, T]
     S[i, X] += dt * S[i, VX]
@@ -434,35 +449,15 @@ def run(t_end, max_collisions, max_events,
                 c = E[i, CELL]
                 cy = c // ncx
                 cx = c - cy * ncx
-                wrapped = False
-                if aux == 0:
-                    cx += 1
-                    if cx == ncx:
-                        cx = 0
-                        S[i, X] -= width
-                        image[i, 0] += 1
-                        wrapped = True
-                elif aux == 1:
-                    cx -= 1
-                    if cx < 0:
-                        cx = ncx - 1
-                        S[i, X] += width
-                        image[i, 0] -= 1
-                        wrapped = True
-                elif aux == 2:
-                    cy += 1
-                    if cy == ncy:
-                        cy = 0
-                        S[i, Y] -= height
-                        image[i, 1] += 1
-                        wrapped = True
+                axis = aux >> 1  # directions 0, 1: +x, -x; 2, 3: +y, -y
+                if axis == 0:
+                    cx, wrap = _step_cell(cx, aux == 0, ncx)
                 else:
-                    cy -= 1
-                    if cy < 0:
-                        cy = ncy - 1
-                        S[i, Y] += height
-                        image[i, 1] -= 1
-                        wrapped = True
+                    cy, wrap = _step_cell(cy, aux == 2, ncy)
+                wrapped = wrap != 0
+                if wrapped:
+                    S[i, X + axis] -= wrap * gf[axis]
+                    image[i, axis] += wrap
                 remove(i, c, head, nxt, prv)
                 c = cx + ncx * cy
                 insert(i, c, head, nxt, prv)

@@ -175,7 +175,7 @@ def _place(i, qt, ql, hv, qhead, qs, qf):
 @njit(inline="always")
 def _take(i, qt, ql, hv, qhead, qs):
     """Take disk ``i`` out of the queue (wherever it is)."""
-    loc = ql[i, LOC]
+    loc = np.int64(ql[i, LOC])  # (int64: one compiled _sift_up for every caller)
     if loc >= 0:
         n = qs[NHEAP] - 1
         qs[NHEAP] = n
@@ -204,7 +204,7 @@ def _take(i, qt, ql, hv, qhead, qs):
 @njit(inline="always")
 def set_time(i, t, qt, ql, hv, qhead, qs, qf):
     """Give disk ``i`` the event time ``t`` (``inf``: none) and restore the queue."""
-    loc = ql[i, LOC]
+    loc = np.int64(ql[i, LOC])
     if loc >= 0 and (t - qf[ORIGIN]) * qf[INVW] < qs[CUR] + 1:
         # Stays in the current bucket: reposition inside the heap.  (Counted as a
         # load: with buckets far too wide every event lands here.)
@@ -249,7 +249,7 @@ def _scan_overflow(restart, qt, ql, hv, qhead, qs, qf):
     """Move the overflow events that now fall inside the year into their lists.  With
     ``restart`` the calendar first restarts at the earliest of them (bucket 0)."""
     nb = qs[MASK] + 1
-    chain = qhead[nb]
+    chain = np.int64(qhead[nb])
     qhead[nb] = -1
     qs[NOVER] = 0
     if restart:
@@ -266,7 +266,7 @@ def _scan_overflow(restart, qt, ql, hv, qhead, qs, qf):
     qs[BOUNDARY] = qs[CUR] + nb
     i = chain
     while i >= 0:
-        nx = ql[i, NEXT]
+        nx = np.int64(ql[i, NEXT])  # (int64: one compiled _place for every caller)
         _place(i, qt, ql, hv, qhead, qs, qf)
         i = nx
 

@@ -22,7 +22,7 @@ import numpy as np
 from .._jit import kernel, njit
 
 
-@njit(inline="always")
+@njit
 def neighbour(c, offset, ncell, periodic):
     """Cell index ``c + offset`` on one axis and the image shift (-1, 0, +1), or -1."""
     n = c + offset

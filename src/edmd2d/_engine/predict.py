@@ -15,7 +15,7 @@ from .._jit import njit
 INF = math.inf
 
 
-@njit(inline="always")
+@njit
 def pair_time(dx, dy, dvx, dvy, d):
     """Time until two circles with separation ``(dx, dy)`` and relative velocity
     ``(dvx, dvy)`` come to the distance ``d`` (seed 4.1), or ``inf``.
@@ -40,7 +40,7 @@ def pair_time(dx, dy, dvx, dvy, d):
     return t if t > 0.0 else 0.0
 
 
-@njit(inline="always")
+@njit
 def segment_time(x, y, vx, vy, r, ax, ay, bx, by):
     """First contact of a moving circle with the segment ``a -> b`` (seed 4.2 plus caps).
 
@@ -79,7 +79,7 @@ def segment_time(x, y, vx, vy, r, ax, ay, bx, by):
     return tb, 2
 
 
-@njit(inline="always")
+@njit
 def box_wall_time(x, vx, r, length):
     """Time until a circle at coordinate ``x`` hits the wall at 0 or at ``length``.
 
@@ -94,7 +94,7 @@ def box_wall_time(x, vx, r, length):
     return INF, -1
 
 
-@njit(inline="always")
+@njit
 def exit_time(x, vx, c, side, ncell, periodic):
     """Time until a centre at coordinate ``x`` in cell ``c`` (cells of width ``side``)
     leaves it, and the direction (+1 or -1).  On a walled axis a centre cannot leave the

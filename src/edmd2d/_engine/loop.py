@@ -316,6 +316,8 @@ def run(t_end, max_collisions, max_events,
     redo1 = -1
     direction = -1
     stale = False
+    t_redo0 = INF
+    t_redo1 = INF
     while True:
         if mode == PREDICT_ALL:
             npred = S.shape[0]
@@ -476,6 +478,8 @@ def run(t_end, max_collisions, max_events,
 
         # (One call site each for the prediction and the queue update: both are
         # compiled into the loop, and a second copy would lengthen compilation.)
+        # Both disks are predicted before either is re-queued, so that the queue's
+        # cache lines for the first load while the second is predicted.
         for k in range(npred):
             if mode == PREDICT_ALL:
                 d = k
@@ -488,10 +492,17 @@ def run(t_end, max_collisions, max_events,
             if mode == PREDICT_ALL:
                 qt[d] = t_new
             else:
-                queue.set_time(d, t_new, qt, E, hv, qhead, qs, qf)
+                queue.prefetch_update(d, t_new, E, qhead, qs, qf)
+                if k == 0:
+                    t_redo0 = t_new
+                else:
+                    t_redo1 = t_new
         if mode == PREDICT_ALL:
             queue.build(t, qt, qt, E, hv, qhead, qs, qf)
             break
+        for k in range(npred):
+            queue.set_time(redo0 if k == 0 else redo1, t_redo0 if k == 0 else t_redo1,
+                           qt, E, hv, qhead, qs, qf)
         if stale:
             counts[C_STALE] += 1
             continue

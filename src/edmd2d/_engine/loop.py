@@ -478,8 +478,8 @@ def run(t_end, max_collisions, max_events,
 
         # (One call site each for the prediction and the queue update: both are
         # compiled into the loop, and a second copy would lengthen compilation.)
-        # Both disks are predicted before either is re-queued, so that the queue's
-        # cache lines for the first load while the second is predicted.
+        # Both disks are predicted before either is re-queued, so that the queue lines
+        # the first update needs are loading while the second disk is predicted.
         for k in range(npred):
             if mode == PREDICT_ALL:
                 d = k

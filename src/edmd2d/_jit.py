@@ -20,8 +20,9 @@ such site reruns whole-function passes (SSA, liveness, type inference) over the 
 Small scalar helpers (contact times, cell neighbours) are therefore plain :func:`njit`
 functions, which LLVM inlines into the event loop by itself: compiling the loop took
 about 8.5 s with them marked ``inline="always"`` and about 4.7 s without, for a speed
-within 1-2 % (N = 10^4, alternating runs).  ``inline="always"`` is kept for helpers that take many arrays (where a call
-would pass each array as a struct) and for the single prediction site of the loop.
+within 1-2 % (N = 10^4, alternating runs).  ``inline="always"`` is kept for helpers
+that take many arrays (where a call would pass each array as a struct) and for the
+single prediction site of the loop.
 
 ``fastmath`` is deliberately off: the collision kernels rely on IEEE semantics (signed
 comparisons of nearly cancelling quantities, ``inf`` for "never"), and the elastic

@@ -13,6 +13,14 @@ Each version is a git revision, exported into a temporary directory::
 
 The timed call is ``advance(collisions=k * N)`` on ``make_gas(N, 0.5, seed=1)`` after
 ``advance(collisions=3 N)`` to equilibrate (process CPU time, one core).
+
+Several sizes (with one ``k`` each, or one for all) alternate too, inside each round;
+the summary then gives, per version, how many times slower a collision is at each size
+than at the first, from the two sizes' maxima *of the same round* (the drift between
+rounds cancels), with the median and range over the rounds.  This is issue 5's scaling
+target, the cost at N = 10^6 against N = 10^4::
+
+    python benchmarks/ab.py --n 10000,1000000 --k 10,2 --reps 4 --rounds 5 main
 """
 
 from __future__ import annotations
@@ -20,6 +28,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import statistics
 import subprocess
 import sys
 import tarfile
@@ -63,26 +72,65 @@ def run_once(tree: Path, n: int, k: float, reps: int) -> dict:
     return json.loads(out.strip().splitlines()[-1])
 
 
+def _number_list(text: str, kind):
+    return [kind(v) for v in text.split(",") if v.strip()]
+
+
+def summarize(maxima: dict, sizes: list[int]) -> list[str]:
+    """Lines of the summary: per version and size, the median and range over rounds of
+    the per-round maximum rate; with several sizes, the per-round slowdown of each size
+    against the first (``maxima[rev][n]`` lists one maximum per round)."""
+    lines = []
+    for rev, by_n in maxima.items():
+        for n in sizes:
+            rates = sorted(by_n[n])
+            lines.append(f"{rev:>12}  N={n:<8}  max per round: median "
+                         f"{statistics.median(rates) / 1e6:.3f}  range "
+                         f"{rates[0] / 1e6:.3f}-{rates[-1] / 1e6:.3f} M collisions/s")
+        for n in sizes[1:]:
+            slow = sorted(a / b for a, b in zip(by_n[sizes[0]], by_n[n]))
+            lines.append(f"{rev:>12}  cost per collision at N={n} / N={sizes[0]}, same "
+                         f"round: median {statistics.median(slow):.2f}  range "
+                         f"{slow[0]:.2f}-{slow[-1]:.2f}")
+    return lines
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("revisions", nargs="+", help="git revisions to compare")
-    ap.add_argument("--n", type=int, default=10_000, help="disks (packing 0.5)")
-    ap.add_argument("--k", type=float, default=10.0, help="collisions per disk per call")
+    ap.add_argument("--n", default="10000",
+                    help="disks (packing 0.5); several sizes comma-separated")
+    ap.add_argument("--k", default="10",
+                    help="collisions per disk per call: one value, or one per size")
     ap.add_argument("--reps", type=int, default=7, help="timed calls per process")
     ap.add_argument("--rounds", type=int, default=3, help="alternating rounds")
     args = ap.parse_args(argv)
-    if args.n < 1 or args.k <= 0 or args.reps < 1 or args.rounds < 1:
-        ap.error("--n, --reps and --rounds must be >= 1 and --k > 0")
+    try:
+        sizes = _number_list(args.n, int)
+        ks = _number_list(args.k, float)
+    except ValueError:
+        ap.error("--n takes integers and --k numbers, comma-separated")
+    if len(ks) == 1:
+        ks = ks * len(sizes)
+    if not sizes or len(ks) != len(sizes):
+        ap.error("give one --k, or one per size in --n")
+    if (min(sizes) < 1 or min(ks) <= 0 or args.reps < 1 or args.rounds < 1
+            or len(set(sizes)) != len(sizes)):
+        ap.error("--n must be distinct sizes >= 1, --reps and --rounds >= 1, --k > 0")
+    maxima = {rev: {n: [] for n in sizes} for rev in args.revisions}
     with tempfile.TemporaryDirectory() as tmp:
         trees = {rev: export(rev, Path(tmp)) for rev in args.revisions}
         for tree in trees.values():  # compile (untimed) before the first round
             run_once(tree, 200, 1.0, 1)
         for r in range(args.rounds):
             for rev, tree in trees.items():
-                res = run_once(tree, args.n, args.k, args.reps)
-                print(f"round {r + 1}  {rev:>12}  N={args.n}  "
-                      f"max {res['max'] / 1e6:.3f}  median {res['median'] / 1e6:.3f} "
-                      "M collisions/s", flush=True)
+                for n, k in zip(sizes, ks):
+                    res = run_once(tree, n, k, args.reps)
+                    maxima[rev][n].append(res["max"])
+                    print(f"round {r + 1}  {rev:>12}  N={n}  "
+                          f"max {res['max'] / 1e6:.3f}  median {res['median'] / 1e6:.3f} "
+                          "M collisions/s", flush=True)
+    print("\n".join(["", "summary (over rounds):"] + summarize(maxima, sizes)))
 
 
 if __name__ == "__main__":

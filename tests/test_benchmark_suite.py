@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 BENCH = Path(__file__).resolve().parents[1] / "benchmarks"
-MODULES = ("scaling", "peers", "probes", "report", "timing")
+MODULES = ("scaling", "peers", "probes", "report", "timing", "ab")
 
 
 @pytest.fixture
@@ -48,3 +48,19 @@ def test_reference_comparison_runs(bench_modules):
     r = peers.vs_reference(20, 0.3, seconds=0.05, seed=1)
     assert r["reference_collisions"] >= 1
     assert r["ratio"] > 0
+
+
+def test_ab_summary_pairs_the_sizes_of_each_round(bench_modules):
+    # The slowdown between sizes is taken round by round: a machine that drifts 2x
+    # between rounds must not show up in it.
+    ab = importlib.import_module("ab")
+    maxima = {"main": {10: [2.0e6, 1.0e6, 1.6e6], 1000: [1.0e6, 0.5e6, 0.4e6]}}
+    lines = ab.summarize(maxima, [10, 1000])
+    assert "median 1.600  range 1.000-2.000" in lines[0]
+    assert "median 0.500  range 0.400-1.000" in lines[1]
+    # per round: 2.0, 2.0, 4.0
+    assert lines[2].endswith("median 2.00  range 2.00-4.00")
+    with pytest.raises(SystemExit):
+        ab.main(["--n", "100,100", "HEAD"])
+    with pytest.raises(SystemExit):
+        ab.main(["--n", "100,200", "--k", "1,2,3", "HEAD"])

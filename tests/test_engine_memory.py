@@ -50,3 +50,20 @@ def test_prefetch_is_only_a_hint():
     a0, b0 = a.copy(), b.copy()
     assert _sum_with_prefetch(a, b) == pytest.approx(a[:, 0].sum() + b.sum(), rel=1e-15)
     assert (a == a0).all() and (b == b0).all()
+
+
+def test_wall_free_gas_holds_no_per_cell_wall_index():
+    # Part of the memory budget: without wall segments there is nothing to look up per
+    # cell, and a large system re-sorts without holding the cells' Morton ranks.
+    sim = ed.make_gas(1500, 0.5, seed=4)
+    assert sim._wstart.shape == (1,) and not hasattr(sim, "_cell_rank")
+    sim._reorder_every = 999
+    sim.advance(collisions=3000)
+    assert not np.array_equal(sim._order, np.arange(1500))  # it did re-sort
+    listed = []
+    for c, j in enumerate(sim._head):  # every disk in exactly its own cell's list
+        while j >= 0:
+            assert sim._E[j, 0] == c
+            listed.append(j)
+            j = sim._nxt[j]
+    assert sorted(listed) == list(range(1500))

@@ -150,13 +150,16 @@ def bucket_walls(wa, wb, gi, gf, reach):
     ``wall[start[c]:start[c+1]]``; entry ``k`` is wall ``wall[k]`` shifted by
     ``(sx[k] * width, sy[k] * height)``.  ``reach`` is the largest radius (plus a
     rounding margin): a wall is listed for every cell whose rectangle grown by ``reach``
-    it meets.
+    it meets.  Without walls ``start`` is ``[0]``, not one entry per cell: callers must
+    not look up cells then.
     """
+    empty = np.zeros(0, dtype=np.int64)
+    if wa.shape[0] == 0:
+        # Nothing to bucket (and nothing to compile).  No per-cell array either (6 bytes
+        # a disk at packing 0.5): every reader skips the lookup when there are no walls.
+        return np.zeros(1, dtype=np.int32), empty, empty, empty
     ncell = int(gi[0] * gi[1])
     start = np.zeros(ncell + 1, dtype=np.int32)  # per cell: keep it small
-    empty = np.zeros(0, dtype=np.int64)
-    if wa.shape[0] == 0:  # nothing to bucket (and nothing to compile)
-        return start, empty, empty, empty
     _bucket_walls(wa, wb, gi, gf, reach, start, empty, empty, empty, False)
     np.cumsum(start, out=start)
     total = int(start[-1])

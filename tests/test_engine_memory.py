@@ -67,3 +67,51 @@ def test_wall_free_gas_holds_no_per_cell_wall_index():
             listed.append(j)
             j = sim._nxt[j]
     assert sorted(listed) == list(range(1500))
+
+
+@pytest.mark.parametrize("periodic", [True, (True, False), False])
+def test_lookahead_changes_no_event_and_no_state(periodic):
+    # The lookahead of large systems only prefetches: forced on for a small one (a
+    # mixture, with box walls on the walled axes and frequent re-sorting in memory) it
+    # must leave every event, count and the final state bit-identical.
+    from edmd2d._engine import queue
+
+    runs = []
+    for lookahead in (0, 1):
+        sim = ed.make_gas(1500, 0.55, radii=np.where(np.arange(1500) % 3, 0.5, 0.65),
+                          periodic=periodic, seed=5)
+        assert sim._qs[queue.LOOKAHEAD] == 0  # off below LOOKAHEAD_MIN_DISKS
+        sim._qs[queue.LOOKAHEAD] = lookahead
+        sim._reorder_every = 2999
+        sim._record_events(40_000)
+        sim.advance(collisions=30_000)
+        assert sim._qs[queue.LOOKAHEAD] == lookahead  # kept through the re-sorts
+        runs.append((sim._recorded_events(), sim._S.copy(), sim._E.copy(), sim.counts))
+    assert len(runs[0][0]) >= 30_000
+    assert runs[0][0] == runs[1][0]
+    assert np.array_equal(runs[0][1], runs[1][1]) and np.array_equal(runs[0][2], runs[1][2])
+    assert runs[0][3] == runs[1][3]
+
+
+@pytest.mark.parametrize("periodic", [True, False])
+def test_lookahead_kernel_writes_nothing(periodic):
+    # Run directly for every bucket of the calendar (so also for lists whose disks sit
+    # at the edges of a walled box), the lookahead leaves every array as it was.
+    from edmd2d._engine import loop, queue
+
+    sim = ed.make_gas(800, 0.5, periodic=periodic, seed=6)
+    sim.advance(collisions=2000)
+    arrays = (sim._S, sim._E, sim._qt, sim._stamp, sim._gi, sim._head, sim._qhead)
+    before = [a.copy() for a in arrays]
+    mask = int(sim._qs[queue.MASK])
+    for cur in range(int(sim._qs[queue.CUR]), int(sim._qs[queue.CUR]) + mask + 2):
+        loop._lookahead(cur, *arrays, mask)
+    assert all(np.array_equal(a, b) for a, b in zip(arrays, before))
+    assert (sim._qhead >= 0).sum() > 100  # the lists it walked were not empty
+
+
+def test_lookahead_is_on_for_large_systems_only():
+    from edmd2d._engine import queue
+
+    assert queue.allocate(queue.LOOKAHEAD_MIN_DISKS - 1)[4][queue.LOOKAHEAD] == 0
+    assert queue.allocate(queue.LOOKAHEAD_MIN_DISKS)[4][queue.LOOKAHEAD] == 1

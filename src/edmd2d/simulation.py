@@ -324,6 +324,7 @@ class Simulation:
         state = aligned_rows(len(perm), _loop.N_STATE, np.float64)
         state[:] = self._S[perm]
         queue = _queue.allocate(len(perm))
+        queue[4][_queue.LOOKAHEAD] = self._qs[_queue.LOOKAHEAD]  # (forced on in tests)
         table = queue[1]
         table[:] = self._E[perm]
         disk = table[:, _loop.KIND] & _loop._KIND_MASK == _loop.DISK

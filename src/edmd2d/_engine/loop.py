@@ -274,6 +274,66 @@ def _reflect(i, nx, ny, S, acc, slot):
         acc[slot] += -2.0 * vn / S[i, INVM]
 
 
+# Buckets ahead of the current one that the lookahead reaches (see _lookahead)
+_AHEAD = 4
+
+
+@njit(inline="always")
+def _lookahead(cur, S, E, qt, stamp, gi, head, qhead, mask):
+    """Prefetch, as the calendar opens bucket ``cur``, what the events of the next
+    ``_AHEAD`` buckets will load, a stage at a time.  (A hint only: no effect on results.)
+
+    At large N the rows of an event's disks, partner and neighbours are cache misses,
+    met one after another: the lists are walked link by link, the partner and the
+    cells are only known from the disk's row, the neighbours only from the cells.
+    Here the ``k``-th disk (from 0) of the list ``d`` buckets ahead gets stage
+    ``_AHEAD - d - k`` each time a bucket opens, so each stage finds in the caches
+    what the previous one requested one bucket (a few events) earlier:
+
+    - stage 0: the disk's bookkeeping row and queue time (its list link);
+    - stage 1: its state row, its kept partner's rows, the three rows of list heads
+      of its 3x3 cells;
+    - stage 2: the state row of the first disk in each of those 9 cells.
+    """
+    ncx = gi[0]
+    for d in range(_AHEAD, 0, -1):
+        h = qhead[(cur + d) & mask]
+        for k in range(_AHEAD - d + 1):
+            if h < 0:
+                break
+            stage = _AHEAD - d - k
+            if stage == 0:
+                prefetch(E, h)
+                prefetch(qt, h)
+                break
+            c = E[h, CELL]
+            cy = c // ncx
+            cx = c - cy * ncx
+            if stage == 1:
+                prefetch(S, h)
+                if E[h, KIND] & _KIND_MASK == DISK:
+                    p = E[h, PARTNER]
+                    prefetch(S, p)
+                    prefetch(E, p)
+                    prefetch(stamp, p)
+                for oy in range(-1, 2):
+                    nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
+                    if nyc >= 0:
+                        prefetch(head, max(cx - 1, 0) + ncx * nyc)
+            elif stage == 2:
+                for ox in range(-1, 2):
+                    nxc, _ = neighbour(cx, ox, ncx, gi[2] != 0)
+                    if nxc < 0:
+                        continue
+                    for oy in range(-1, 2):
+                        nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
+                        if nyc >= 0:
+                            j = head[nxc + ncx * nyc]
+                            if j >= 0:
+                                prefetch(S, j)
+            h = E[h, queue.NEXT]
+
+
 @kernel
 def run(t_end, max_collisions, max_events,
         S, E, stamp, image, gi, gf, head, nxt, prv,
@@ -318,6 +378,7 @@ def run(t_end, max_collisions, max_events,
     stale = False
     t_redo0 = INF
     t_redo1 = INF
+    opened = -1  # the calendar bucket the lookahead last ran for
     while True:
         if mode == PREDICT_ALL:
             npred = S.shape[0]
@@ -326,6 +387,9 @@ def run(t_end, max_collisions, max_events,
             if i < 0:
                 status = NO_EVENTS
                 break
+            if qs[queue.CUR] != opened and qs[queue.LOOKAHEAD] != 0:
+                opened = qs[queue.CUR]
+                _lookahead(opened, S, E, qt, stamp, gi, head, qhead, qs[queue.MASK])
             t = qt[i]
             # The next events are most likely those of the heap root's children: start
             # loading their rows now (at large N each is a cache miss otherwise).

@@ -56,9 +56,14 @@ NEXT, PREV, LOC = 5, 6, 7
 N_QL = 8
 # qs: current bucket, heap size, events in the year's lists, events in overflow,
 # nb - 1, bucket at which the overflow is next scanned, heap insertions and bucket
-# steps since the bucket width was last checked.
-CUR, NHEAP, NLIST, NOVER, MASK, BOUNDARY, LOADED, ADVANCED = range(8)
-N_QS = 8
+# steps since the bucket width was last checked, and whether the event loop prefetches
+# ahead along the lists (1) or not (0; see loop.py, _lookahead).
+CUR, NHEAP, NLIST, NOVER, MASK, BOUNDARY, LOADED, ADVANCED, LOOKAHEAD = range(9)
+N_QS = 9
+# From this many disks on the working set has left the caches and the lookahead pays
+# (measured: +18 % at N = 10^5, +15-20 % at 10^6; -3 to -5 % at 10^4 and 3x10^4,
+# where it is pure overhead).
+LOOKAHEAD_MIN_DISKS = 2 ** 16
 # qf: time origin of bucket 0, inverse bucket width
 ORIGIN, INVW = 0, 1
 N_QF = 2
@@ -75,6 +80,7 @@ def allocate(n):
         nb *= 2
     qs = np.zeros(N_QS, np.int64)
     qs[MASK] = nb - 1
+    qs[LOOKAHEAD] = 1 if n >= LOOKAHEAD_MIN_DISKS else 0
     qf = np.zeros(N_QF, np.float64)
     qf[INVW] = 1.0
     ql = aligned_rows(n, N_QL, np.int32, align=32)

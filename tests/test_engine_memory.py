@@ -101,7 +101,7 @@ def test_lookahead_kernel_writes_nothing(periodic):
 
     sim = ed.make_gas(800, 0.5, periodic=periodic, seed=6)
     sim.advance(collisions=2000)
-    arrays = (sim._S, sim._E, sim._qt, sim._stamp, sim._gi, sim._head, sim._qhead)
+    arrays = (sim._S, sim._E, sim._qt, sim._stamp, sim._gi, sim._head, sim._nxt, sim._qhead)
     before = [a.copy() for a in arrays]
     mask = int(sim._qs[queue.MASK])
     for cur in range(int(sim._qs[queue.CUR]), int(sim._qs[queue.CUR]) + mask + 2):

@@ -36,6 +36,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .._jit import kernel, njit
 from . import prefetch, queue
 from .grid import insert, neighbour, remove
@@ -275,27 +277,71 @@ def _reflect(i, nx, ny, S, acc, slot):
 
 
 # Buckets ahead of the current one that the lookahead reaches (see _lookahead)
-_AHEAD = 4
+_AHEAD = 5
+# What _prefetch_cells requests for each cell: its list head, its first disk (state
+# row and list link), or its second disk
+_HEADS, _FIRST, _SECOND = 0, 1, 2
 
 
 @njit(inline="always")
-def _lookahead(cur, S, E, qt, stamp, gi, head, qhead, mask):
+def _prefetch_cells(c, ox0, ox1, oy0, oy1, what, S, gi, head, nxt):
+    """Prefetch for the cells at offsets ``[ox0, ox1] x [oy0, oy1]`` from cell ``c``."""
+    ncx = gi[0]
+    cy = c // ncx
+    cx = c - cy * ncx
+    for ox in range(ox0, ox1 + 1):
+        nxc, _ = neighbour(cx, ox, ncx, gi[2] != 0)
+        if nxc < 0:
+            continue
+        for oy in range(oy0, oy1 + 1):
+            nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
+            if nyc < 0:
+                continue
+            if what == _HEADS:
+                prefetch(head, nxc + ncx * nyc)
+                continue
+            j = head[nxc + ncx * nyc]
+            if j >= 0 and what == _SECOND:
+                j = nxt[j]
+            if j >= 0:
+                prefetch(S, j)
+                if what == _FIRST:
+                    prefetch(nxt, j)
+
+
+@njit
+def _exposed(direction):
+    """Offsets ``(ox0, ox1, oy0, oy1)`` of the cells that a crossing in ``direction``
+    (+x, -x, +y, -y) brings into range, from the cell the disk leaves."""
+    if direction == 0:
+        return 2, 2, -1, 1
+    if direction == 1:
+        return -2, -2, -1, 1
+    if direction == 2:
+        return -1, 1, 2, 2
+    return -1, 1, -2, -2
+
+
+@kernel
+def _lookahead(cur, S, E, qt, stamp, gi, head, nxt, qhead, mask):
     """Prefetch, as the calendar opens bucket ``cur``, what the events of the next
     ``_AHEAD`` buckets will load, a stage at a time.  (A hint only: no effect on results.)
 
-    At large N the rows of an event's disks, partner and neighbours are cache misses,
-    met one after another: the lists are walked link by link, the partner and the
-    cells are only known from the disk's row, the neighbours only from the cells.
-    Here the ``k``-th disk (from 0) of the list ``d`` buckets ahead gets stage
-    ``_AHEAD - d - k`` each time a bucket opens, so each stage finds in the caches
-    what the previous one requested one bucket (a few events) earlier:
+    At large N the rows of an event's disk, partner and neighbours are cache misses met
+    one after another: a list is walked link by link, the partner and the cell are only
+    known from the disk's row, the neighbours only from the cells' list heads.  Here
+    the ``k``-th disk (from 0) of the list ``d`` buckets ahead gets stage
+    ``_AHEAD - d - k`` each time a bucket opens, so that each stage finds in the caches
+    what the previous one requested a bucket (a few events) earlier:
 
-    - stage 0: the disk's bookkeeping row and queue time (its list link);
-    - stage 1: its state row, its kept partner's rows, the three rows of list heads
-      of its 3x3 cells;
-    - stage 2: the state row of the first disk in each of those 9 cells.
+    0. the disk's bookkeeping row and queue time (which hold its list link);
+    1. its state row, its kept partner's rows, the list heads of its 3x3 cells;
+    2. if its event is a cell crossing, the list heads of the cells the crossing
+       exposes; otherwise the first disk of each of its 9 cells and the list heads
+       of the partner's cells;
+    3. the first disks of the exposed cells; otherwise the second disks of its own
+       cells and the first disks of the partner's.
     """
-    ncx = gi[0]
     for d in range(_AHEAD, 0, -1):
         h = qhead[(cur + d) & mask]
         for k in range(_AHEAD - d + 1):
@@ -306,31 +352,34 @@ def _lookahead(cur, S, E, qt, stamp, gi, head, qhead, mask):
                 prefetch(E, h)
                 prefetch(qt, h)
                 break
-            c = E[h, CELL]
-            cy = c // ncx
-            cx = c - cy * ncx
-            if stage == 1:
-                prefetch(S, h)
-                if E[h, KIND] & _KIND_MASK == DISK:
-                    p = E[h, PARTNER]
-                    prefetch(S, p)
-                    prefetch(E, p)
-                    prefetch(stamp, p)
-                for oy in range(-1, 2):
-                    nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
-                    if nyc >= 0:
-                        prefetch(head, max(cx - 1, 0) + ncx * nyc)
-            elif stage == 2:
-                for ox in range(-1, 2):
-                    nxc, _ = neighbour(cx, ox, ncx, gi[2] != 0)
-                    if nxc < 0:
-                        continue
-                    for oy in range(-1, 2):
-                        nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
-                        if nyc >= 0:
-                            j = head[nxc + ncx * nyc]
-                            if j >= 0:
-                                prefetch(S, j)
+            if stage <= 3:
+                own = np.int64(E[h, CELL])
+                partner = E[h, PARTNER] if E[h, KIND] & _KIND_MASK == DISK else -1
+                ox0, ox1, oy0, oy1 = -1, 1, -1, 1
+                other = np.int64(-1)  # a second cell whose 3x3 cells get ``what_other``
+                what_other = _HEADS
+                if stage == 1:
+                    prefetch(S, h)
+                    if partner >= 0:
+                        prefetch(S, partner)
+                        prefetch(E, partner)
+                        prefetch(stamp, partner)
+                    what = _HEADS
+                elif qt[h] < S[h, TC]:  # a cell crossing: only the exposed cells
+                    ox0, ox1, oy0, oy1 = _exposed(E[h, KIND] >> 4)
+                    what = _FIRST if stage == 3 else _HEADS
+                else:
+                    what = _FIRST if stage == 2 else _SECOND
+                    if partner >= 0:
+                        other = E[partner, CELL]
+                        what_other = _HEADS if stage == 2 else _FIRST
+                # (One call site, all arguments plain integers: numba compiles a
+                # function once per distinct literal argument otherwise.)
+                for cell in (own, other):
+                    if cell >= 0:
+                        _prefetch_cells(cell, ox0, ox1, oy0, oy1, what, S, gi, head, nxt)
+                    ox0, ox1, oy0, oy1 = -1, 1, -1, 1
+                    what = what_other
             h = E[h, queue.NEXT]
 
 
@@ -389,7 +438,7 @@ def run(t_end, max_collisions, max_events,
                 break
             if qs[queue.CUR] != opened and qs[queue.LOOKAHEAD] != 0:
                 opened = qs[queue.CUR]
-                _lookahead(opened, S, E, qt, stamp, gi, head, qhead, qs[queue.MASK])
+                _lookahead(opened, S, E, qt, stamp, gi, head, nxt, qhead, qs[queue.MASK])
             t = qt[i]
             # The next events are most likely those of the heap root's children: start
             # loading their rows now (at large N each is a cache miss otherwise).

@@ -30,6 +30,13 @@ A wrap, or a stale ``nc``, falls back to a full scan.
 
 Positions are "delayed states": ``S[i, 0:2]`` is valid at ``S[i, 4]``; only the disks of
 an event are moved to its time.
+
+From ``queue.LOOKAHEAD_MIN_DISKS`` disks on, the working set no longer fits the caches
+and every event would wait, one miss after another, for its disk's rows, its partner's,
+its cells' list heads and its neighbours' rows.  Each time the calendar opens a bucket,
+``_lookahead`` therefore prefetches these for the events of the next few buckets, one
+stage of that chain per bucket (see there).  It only reads and prefetches: results are
+bit-identical with it on or off (tested by forcing it on for small systems).
 """
 
 from __future__ import annotations

@@ -115,3 +115,63 @@ def test_lookahead_is_on_for_large_systems_only():
 
     assert queue.allocate(queue.LOOKAHEAD_MIN_DISKS - 1)[4][queue.LOOKAHEAD] == 0
     assert queue.allocate(queue.LOOKAHEAD_MIN_DISKS)[4][queue.LOOKAHEAD] == 1
+
+
+def test_lookahead_on_by_default_at_its_size_changes_nothing():
+    # At the size where it switches on by itself: the same events and state as with it
+    # switched off.
+    from edmd2d._engine import queue
+
+    n = queue.LOOKAHEAD_MIN_DISKS
+    runs = []
+    for lookahead in (1, 0):
+        sim = ed.make_gas(n, 0.5, seed=7)
+        assert sim._qs[queue.LOOKAHEAD] == 1
+        sim._qs[queue.LOOKAHEAD] = lookahead
+        sim._record_events(60_000)
+        sim.advance(collisions=50_000)
+        runs.append((sim._recorded_events(), sim._S.copy(), sim.counts))
+    assert runs[0][0] == runs[1][0] and len(runs[0][0]) == 50_000
+    assert np.array_equal(runs[0][1], runs[1][1]) and runs[0][2] == runs[1][2]
+
+
+_COUNT_LOOKAHEAD_CALLS = r"""
+import numpy as np
+import edmd2d as ed
+from edmd2d._engine import loop, queue
+
+calls = []
+inner = loop._lookahead
+def counting(cur, *args):
+    calls.append(int(cur))
+    return inner(cur, *args)
+loop._lookahead = counting  # (as plain Python, run() looks it up at each call)
+
+out = []
+for flag in (1, 0):
+    sim = ed.make_gas(150, 0.5, seed=8)
+    sim._qs[queue.LOOKAHEAD] = flag
+    calls.clear()
+    sim.advance(collisions=300)
+    repeats = sum(a == b for a, b in zip(calls, calls[1:]))
+    out.append((len(calls), repeats))
+print(out)
+"""
+
+
+def test_event_loop_runs_the_lookahead_once_per_bucket_reached():
+    # Prefetching has no observable effect, so the bit-identity tests above would also
+    # pass if the loop never called the lookahead.  As plain Python (numba's JIT off,
+    # in a child process) the call can be counted: on, once per bucket the calendar
+    # reaches (consecutive calls never repeat a bucket); off, never.
+    import ast
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    res = subprocess.run([sys.executable, "-c", _COUNT_LOOKAHEAD_CALLS], env=env,
+                         capture_output=True, text=True, timeout=600, check=True)
+    (n_on, repeats_on), (n_off, _) = ast.literal_eval(res.stdout.strip().splitlines()[-1])
+    assert n_on > 50 and repeats_on == 0
+    assert n_off == 0

@@ -326,17 +326,19 @@ def _exposed(direction):
 
 @kernel
 def _lookahead(cur, S, E, qt, stamp, gi, head, nxt, qhead, mask):
-    """Prefetch, as the calendar opens bucket ``cur``, what the events of the next
+    """Prefetch, as the calendar reaches bucket ``cur``, what the events of the next
     ``_AHEAD`` buckets will load, a stage at a time.  (A hint only: no effect on results.)
 
     At large N the rows of an event's disk, partner and neighbours are cache misses met
     one after another: a list is walked link by link, the partner and the cell are only
     known from the disk's row, the neighbours only from the cells' list heads.  Here
     the ``k``-th disk (from 0) of the list ``d`` buckets ahead gets stage
-    ``_AHEAD - d - k`` each time a bucket opens, so that each stage finds in the caches
-    what the previous one requested a bucket (a few events) earlier:
+    ``_AHEAD - d - k`` each time the loop finds the calendar on a new bucket, so that
+    each stage finds in the caches what the previous one requested a bucket (a few
+    events) earlier.  (Not always: the calendar may step over empty buckets, and a new
+    event joins a list at its head, shifting ``k``; a hint that misses costs a miss.)
 
-    0. the disk's bookkeeping row and queue time (which hold its list link);
+    0. the disk's bookkeeping row (which holds its list link) and queue time;
     1. its state row, its kept partner's rows, the list heads of its 3x3 cells;
     2. if its event is a cell crossing, the list heads of the cells the crossing
        exposes; otherwise the first disk of each of its 9 cells and the list heads
@@ -383,8 +385,8 @@ def _lookahead(cur, S, E, qt, stamp, gi, head, nxt, qhead, mask):
                     if partner >= 0:
                         other = E[partner, CELL]
                         heads_other = False
-                # (One call site, all arguments plain integers: numba compiles a
-                # function once per distinct literal argument otherwise.)
+                # (One call site, no literal arguments: numba compiles a function
+                # once per distinct literal argument otherwise.)
                 for cell in (own, other):
                     if cell >= 0:
                         _prefetch_cells(cell, ox0, ox1, oy0, oy1, heads, S, gi, head, nxt)

@@ -60,9 +60,11 @@ N_QL = 8
 # ahead along the lists (1) or not (0; see loop.py, _lookahead).
 CUR, NHEAP, NLIST, NOVER, MASK, BOUNDARY, LOADED, ADVANCED, LOOKAHEAD = range(9)
 N_QS = 9
-# From this many disks on the working set has left the caches and the lookahead pays
-# (measured: +18 % at N = 10^5, +15-20 % at 10^6; -3 to -5 % at 10^4 and 3x10^4,
-# where it is pure overhead).
+# From this many disks on the working set has left the caches and the lookahead pays.
+# Measured in one process with it off and on in turn: +32-34 % at N = 10^6, +18 % at
+# 10^5 (an earlier variant); below, mostly overhead: -16 % at 10^4, -8 % at 2x10^4;
+# at 3x10^4 +15 % and +32 % while other tenants competed for memory, -3 % in a quiet
+# hour (an earlier variant).
 LOOKAHEAD_MIN_DISKS = 2 ** 16
 # qf: time origin of bucket 0, inverse bucket width
 ORIGIN, INVW = 0, 1

@@ -61,11 +61,11 @@ N_QL = 8
 CUR, NHEAP, NLIST, NOVER, MASK, BOUNDARY, LOADED, ADVANCED, LOOKAHEAD = range(9)
 N_QS = 9
 # From this many disks on the working set has left the caches and the lookahead pays.
-# Measured in one process with it off and on in turn: +32-34 % at N = 10^6, +18 % at
-# 10^5 (an earlier variant); below, mostly overhead: -16 % at 10^4, -8 % at 2x10^4;
-# at 3x10^4 +15 % and +32 % while other tenants competed for memory, -3 % in a quiet
-# hour (an earlier variant).
-LOOKAHEAD_MIN_DISKS = 2 ** 16
+# Measured in one process with it off and on in turn (medians of 10-14 pairs): +32-34 %
+# at N = 10^6, +18 % at 10^5 (an earlier variant), +13 % at 4.5x10^4; at 3x10^4 +1 %,
+# +15 % and +32 % in three runs (the last two while other tenants competed for
+# memory); below, overhead: -6.5 % at 2.4x10^4, -8 % at 2x10^4, -16 % at 10^4.
+LOOKAHEAD_MIN_DISKS = 2 ** 15
 # qf: time origin of bucket 0, inverse bucket width
 ORIGIN, INVW = 0, 1
 N_QF = 2

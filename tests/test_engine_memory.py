@@ -69,6 +69,32 @@ def test_wall_free_gas_holds_no_per_cell_wall_index():
     assert sorted(listed) == list(range(1500))
 
 
+def _runs_with_and_without_lookahead(build, collisions, reorder_every=None):
+    """The recorded events, state rows, bookkeeping rows and counts of two runs of the
+    same system, with the lookahead switched on and off (whatever its size)."""
+    from edmd2d._engine import queue
+
+    runs = []
+    for lookahead in (1, 0):
+        sim = build()
+        sim._qs[queue.LOOKAHEAD] = lookahead
+        if reorder_every is not None:
+            sim._reorder_every = reorder_every
+        sim._record_events(collisions + 10_000)
+        sim.advance(collisions=collisions)
+        assert sim._qs[queue.LOOKAHEAD] == lookahead  # kept through any re-sort
+        runs.append((sim._recorded_events(), sim._S.copy(), sim._E.copy(), sim.counts))
+    assert len(runs[0][0]) >= collisions
+    return runs
+
+
+def _assert_identical(runs):
+    (ev_on, s_on, e_on, c_on), (ev_off, s_off, e_off, c_off) = runs
+    assert ev_on == ev_off
+    assert np.array_equal(s_on, s_off) and np.array_equal(e_on, e_off)
+    assert c_on == c_off
+
+
 @pytest.mark.parametrize("periodic", [True, (True, False), False])
 def test_lookahead_changes_no_event_and_no_state(periodic):
     # The lookahead of large systems only prefetches: forced on for a small one (a
@@ -76,21 +102,13 @@ def test_lookahead_changes_no_event_and_no_state(periodic):
     # must leave every event, count and the final state bit-identical.
     from edmd2d._engine import queue
 
-    runs = []
-    for lookahead in (0, 1):
+    def build():
         sim = ed.make_gas(1500, 0.55, radii=np.where(np.arange(1500) % 3, 0.5, 0.65),
                           periodic=periodic, seed=5)
         assert sim._qs[queue.LOOKAHEAD] == 0  # off below LOOKAHEAD_MIN_DISKS
-        sim._qs[queue.LOOKAHEAD] = lookahead
-        sim._reorder_every = 2999
-        sim._record_events(40_000)
-        sim.advance(collisions=30_000)
-        assert sim._qs[queue.LOOKAHEAD] == lookahead  # kept through the re-sorts
-        runs.append((sim._recorded_events(), sim._S.copy(), sim._E.copy(), sim.counts))
-    assert len(runs[0][0]) >= 30_000
-    assert runs[0][0] == runs[1][0]
-    assert np.array_equal(runs[0][1], runs[1][1]) and np.array_equal(runs[0][2], runs[1][2])
-    assert runs[0][3] == runs[1][3]
+        return sim
+
+    _assert_identical(_runs_with_and_without_lookahead(build, 30_000, reorder_every=2999))
 
 
 @pytest.mark.parametrize("periodic", [True, False])
@@ -122,21 +140,17 @@ def test_lookahead_on_by_default_at_its_size_changes_nothing():
     # switched off.
     from edmd2d._engine import queue
 
-    n = queue.LOOKAHEAD_MIN_DISKS
-    runs = []
-    for lookahead in (1, 0):
-        sim = ed.make_gas(n, 0.5, seed=7)
+    def build():
+        sim = ed.make_gas(queue.LOOKAHEAD_MIN_DISKS, 0.5, seed=7)
         assert sim._qs[queue.LOOKAHEAD] == 1
-        sim._qs[queue.LOOKAHEAD] = lookahead
-        sim._record_events(60_000)
-        sim.advance(collisions=50_000)
-        runs.append((sim._recorded_events(), sim._S.copy(), sim.counts))
-    assert runs[0][0] == runs[1][0] and len(runs[0][0]) == 50_000
-    assert np.array_equal(runs[0][1], runs[1][1]) and runs[0][2] == runs[1][2]
+        return sim
+
+    runs = _runs_with_and_without_lookahead(build, 50_000)
+    assert len(runs[0][0]) == 50_000
+    _assert_identical(runs)
 
 
 _COUNT_LOOKAHEAD_CALLS = r"""
-import numpy as np
 import edmd2d as ed
 from edmd2d._engine import loop, queue
 

@@ -33,10 +33,10 @@ an event are moved to its time.
 
 From ``queue.LOOKAHEAD_MIN_DISKS`` disks on, the working set no longer fits the caches
 and every event would wait, one miss after another, for its disk's rows, its partner's,
-its cells' list heads and its neighbours' rows.  Each time the calendar opens a bucket,
-``_lookahead`` therefore prefetches these for the events of the next few buckets, one
-stage of that chain per bucket (see there).  It only reads and prefetches: results are
-bit-identical with it on or off (tested by forcing it on for small systems).
+its cells' list heads and its neighbours' rows.  Each time the calendar reaches a new
+bucket, ``_lookahead`` therefore prefetches these for the events of the next few
+buckets, one stage of that chain per bucket (see there).  It only reads and prefetches:
+results are bit-identical with it on or off (tested by forcing it on for small systems).
 """
 
 from __future__ import annotations
@@ -344,6 +344,8 @@ def _lookahead(cur, S, E, qt, stamp, gi, head, nxt, qhead, mask):
        exposes; otherwise the first disk of each of its 9 cells and the list heads
        of the partner's cells;
     3. the first disks of the exposed cells, or of the partner's cells.
+
+    (Stage 4, reached by the first disk of the next list, has nothing left to fetch.)
 
     (Measured at N = 10^6 against prefetching also the second disks of the cells, and
     against wrapping at the grid's edges: both cost more than they saved.)

@@ -29,9 +29,16 @@ def engine_array_bytes(sim) -> int:
 
     This reads the *private* attributes through ``vars(sim)``: a measurement, not an
     API.  Everything the engine needs between events lives in these arrays, so their
-    total is the engine's memory footprint.
+    total is the engine's memory footprint.  Several per-disk columns are views into
+    the two row tables: each buffer is counted once.
     """
-    return int(sum(v.nbytes for v in vars(sim).values() if isinstance(v, np.ndarray)))
+    owners = {}
+    for v in vars(sim).values():
+        if isinstance(v, np.ndarray):
+            while isinstance(v.base, np.ndarray):  # (a view: count its owner, once)
+                v = v.base
+            owners[id(v)] = v
+    return int(sum(v.nbytes for v in owners.values()))
 
 
 def count_delta(before, after) -> dict:

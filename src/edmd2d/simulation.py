@@ -182,28 +182,27 @@ class Simulation:
         self._gi = np.array([ncx, ncy, int(box.periodic[0]), int(box.periodic[1])], np.int64)
         self._gf = np.array([width, height, width / ncx, height / ncy], np.float64)
 
-        # Per-disk state, one 64-byte row each (see _engine/loop.py for the columns).
+        # Per-disk state and bookkeeping, one 64-byte row each in S and E (see
+        # _engine/loop.py for the columns).
         state = aligned_rows(n, _loop.N_STATE, np.float64)  # 64-byte rows, aligned
+        state[:] = 0.0  # (also the spare bytes: the rows are compared bit for bit)
         state[:, _loop.X:_loop.Y + 1] = pos
         state[:, _loop.VX:_loop.VY + 1] = vel
         state[:, _loop.T] = float(t0)
         state[:, _loop.R] = rad
-        with np.errstate(divide="ignore"):
-            state[:, _loop.INVM] = np.where(np.isinf(mass), 0.0, 1.0 / mass)
-        state[:, _loop.TC] = np.inf
-        self._S = state
+        # E: the bookkeeping table (cell, kept candidate, queue links and time).
+        queue = _queue.allocate(n)
         self._mass = mass
         self._time = float(t0)
-        idx = np.int32
-        self._stamp = np.zeros(n, idx)
+        vars(self).update(self._tables(state, queue))
+        self._stamp[:] = 0
+        with np.errstate(divide="ignore"):
+            self._invm[:] = np.where(np.isinf(mass), 0.0, 1.0 / mass)
+        self._tc[:] = np.inf
         # Image counters stay int64: a fast disk in a small periodic box can wrap more
         # than 2^31 times in a long run.
         self._image = np.zeros((n, 2), np.int64)
-        # E: the per-disk bookkeeping table (cell, kept candidate, queue links).
-        self._qt, self._E, self._hv, self._qhead, self._qs, self._qf = _queue.allocate(n)
-        self._head = np.empty(ncx * ncy, idx)
-        self._nxt = np.empty(n, idx)
-        self._prv = np.empty(n, idx)
+        self._head = np.empty(ncx * ncy, np.int32)
         _grid.build_cells(pos, self._gi, self._gf, self._E[:, _loop.CELL], self._head,
                           self._nxt, self._prv)
         if wall_list:
@@ -290,8 +289,16 @@ class Simulation:
             )
 
     # ------------------------------------------------------------------ engine calls
-    def _grid_args(self):
-        return (self._gi, self._gf, self._head, self._nxt)
+    @staticmethod
+    def _tables(state, queue) -> dict:
+        """The attributes for the state table ``S``, the queue's arrays (the table
+        ``E`` among them) and the per-disk columns that are views into ``S`` and ``E``:
+        to be installed together, by one ``vars(self).update``."""
+        names = ("_qt", "_E", "_hv", "_qhead", "_qs", "_qf")
+        attrs = dict(zip(names, queue), _S=state)
+        views = _loop.row_views(state, queue[1])
+        attrs.update(zip(("_stamp", "_nxt", "_prv", "_qt", "_tc", "_invm"), views))
+        return attrs
 
     def _wall_args(self):
         return (self._wa, self._wb, self._wstart, self._wwall, self._wsx, self._wsy)
@@ -299,8 +306,9 @@ class Simulation:
     def _run(self, t_end, max_collisions, max_events, out, info, mode):
         return _loop.run(
             t_end, max_collisions, max_events,
-            self._S, self._E, self._stamp, self._image, *self._grid_args(), self._prv,
-            *self._wall_args(), self._qt, self._hv, self._qhead, self._qs, self._qf,
+            self._S, self._E, self._stamp, self._nxt, self._prv, self._qt, self._tc,
+            self._invm, self._image, self._gi, self._gf, self._head,
+            *self._wall_args(), self._hv, self._qhead, self._qs, self._qf,
             self._counts, self._acc, out, info, self._log_t, self._log_e,
             self._log_n, self._order, mode,
         )
@@ -311,8 +319,8 @@ class Simulation:
     def _reorder(self) -> None:
         """Re-sort the internal rows along the Z-order of their cells (see module top).
 
-        Every new array is built first and all are swapped in by one statement, so an
-        interrupt cannot leave them half permuted.  The queue is rebuilt rather than
+        Every new array is built first and all are swapped in by one ``dict.update``,
+        so an interrupt cannot leave them half permuted.  The queue is rebuilt rather than
         renumbered, which keeps its tie order (time, then internal index) exact.
         """
         # (The cells' Morton ranks are recomputed each time, about 40 ms at N = 10^6
@@ -321,6 +329,8 @@ class Simulation:
         perm = _grid.order_by_cell(self._E[:, _loop.CELL], rank, len(rank))
         inv = np.empty_like(perm)
         inv[perm] = np.arange(len(perm))
+        # (Whole rows move: the stamps with S, the queue times, candidate times and
+        # inverse masses with E; the cell and queue links are rebuilt.)
         state = aligned_rows(len(perm), _loop.N_STATE, np.float64)
         state[:] = self._S[perm]
         queue = _queue.allocate(len(perm))
@@ -329,14 +339,13 @@ class Simulation:
         table[:] = self._E[perm]
         disk = table[:, _loop.KIND] & _loop._KIND_MASK == _loop.DISK
         table[disk, _loop.PARTNER] = inv[table[disk, _loop.PARTNER]]
-        head, nxt, prv = (np.empty_like(a) for a in (self._head, self._nxt, self._prv))
+        _, nxt, prv, times, _, _ = _loop.row_views(state, table)
+        head = np.empty_like(self._head)
         _grid.build_lists(table[:, _loop.CELL], head, nxt, prv)
-        _queue.build(self._time, self._qt[perm], *queue)
-        (self._S, self._mass, self._order, self._stamp, self._image,
-         self._head, self._nxt, self._prv,
-         (self._qt, self._E, self._hv, self._qhead, self._qs, self._qf), self._since_reorder) = (
-            state, self._mass[perm], self._order[perm], self._stamp[perm],
-            self._image[perm], head, nxt, prv, queue, 0)
+        _queue.build(self._time, times.copy(), *queue)
+        vars(self).update(self._tables(state, queue), _mass=self._mass[perm],
+                          _order=self._order[perm], _image=self._image[perm], _head=head,
+                          _since_reorder=0)
 
     def _to_user(self, internal: np.ndarray) -> np.ndarray:
         """Rows in the user's disk order (a new array)."""
@@ -514,13 +523,13 @@ class Simulation:
 
     def kinetic_energy(self) -> float:
         """Total kinetic energy of the movable disks, ``sum m v^2 / 2``."""
-        movable = self._S[:, _loop.INVM] > 0
+        movable = self._invm > 0
         vel = self._S[movable, _loop.VX:_loop.VY + 1]
         return float(0.5 * np.dot(self._mass[movable], np.einsum("ij,ij->i", vel, vel)))
 
     def momentum(self) -> np.ndarray:
         """Total momentum of the movable disks, shape (2,)."""
-        movable = self._S[:, _loop.INVM] > 0
+        movable = self._invm > 0
         return self._mass[movable] @ self._S[movable, _loop.VX:_loop.VY + 1]
 
     def set_velocities(self, velocities) -> None:

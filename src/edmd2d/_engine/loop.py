@@ -1,19 +1,30 @@
 """The event loop (seed section 3), one scheduled event per disk.
 
-State layout (struct of arrays, one row per disk):
+State layout: two tables of 64-byte rows (64-byte aligned: a row is one cache line).
 
-``S[i] = (x, y, vx, vy, t_local, radius, 1/mass, t_candidate)`` (float64, 64 bytes,
-allocated 64-byte aligned: one cache line), ``stamp[i]`` (int32 invalidation counter),
-and the bookkeeping row ``E[i]`` (int32, 32 bytes, 32-byte aligned):
+``S[i]``, what other disks read of disk ``i`` when they predict against it:
+float64 columns ``(x, y, vx, vy, t_local, radius)`` and, in its last 8 bytes (int32
+columns 12-14 of ``S.view(np.int32)``), ``stamp[i]`` (the invalidation counter) and
+``nxt[i]``, ``prv[i]`` (its links in its grid cell's list).
 
-``E[i] = (cell, kind, partner, aux, partner_stamp, next, prev, loc)``
+``E[i]``, what only disk ``i``'s own events use: int32 columns
 
-``kind, partner, aux, partner_stamp`` (with time ``S[i, TC]``) is the kept candidate
+``(cell, kind, partner, aux, partner_stamp, next, prev, loc)``
+
+and float64 columns 4-6 (of ``E.view(np.float64)``) ``qt[i], tc[i], invm[i]``: its
+scheduled time, the time of its kept candidate, and 1/mass.
+
+``kind, partner, aux, partner_stamp`` (with time ``tc[i]``) is the kept candidate
 ``nc``: the best event that is *not* a cell crossing; ``next, prev, loc`` are disk
 ``i``'s links in the calendar queue (queue.py), which holds its scheduled time
-``qt[i]``.  The scheduled event is the cell crossing when ``qt[i] < S[i, TC]`` (its
-direction is kept in bits 4-5 of ``kind``), and ``nc`` otherwise.  What the loop needs
-about a disk thus sits in two rows instead of a cache line per array.
+``qt[i]``.  The scheduled event is the cell crossing when ``qt[i] < tc[i]`` (its
+direction is kept in bits 4-5 of ``kind``), and ``nc`` otherwise.
+
+The kernels see ``stamp, nxt, prv, qt, tc, invm`` as strided 1-D views into the two
+tables (:func:`row_views`).  A neighbour scanned in a prediction thus costs one cache
+line (its state, stamp and list link), and a disk's own event another: at N = 10^6,
+where each is a miss, separate arrays for the stamps, the cell links and the queue
+times cost a line each on top.
 
 Why one event per disk is enough: a disk's event is the minimum over its candidates.
 When a partner ``j`` changes course it is re-predicted against all its neighbours, so
@@ -50,12 +61,15 @@ from . import prefetch, queue
 from .grid import insert, neighbour, remove
 from .predict import INF, box_wall_time, exit_time, pair_time, segment_time
 
-# Columns of S
-X, Y, VX, VY, T, R, INVM, TC = 0, 1, 2, 3, 4, 5, 6, 7
+# Float64 columns of S, and int32 columns of S.view(np.int32)
+X, Y, VX, VY, T, R = 0, 1, 2, 3, 4, 5
 N_STATE = 8
+STAMP, GNEXT, GPREV = 12, 13, 14
 
-# Columns of E (the last three, NEXT, PREV and LOC, belong to the queue)
+# Int32 columns of E (NEXT, PREV and LOC belong to the queue), and float64 columns of
+# E.view(np.float64) (QT belongs to the queue)
 CELL, KIND, PARTNER, AUX, PSTAMP = 0, 1, 2, 3, 4
+TC, INVM = 5, 6
 _KIND_MASK = 15  # low bits of E[:, KIND]; the bits above hold the crossing direction
 
 # Event kinds
@@ -93,6 +107,15 @@ REACHED_EVENT_LIMIT = 2
 NO_EVENTS = 3
 ERR_IMMOVABLE_PAIR = 10
 ERR_IMMOVABLE_WALL = 11
+
+
+def row_views(S, E):
+    """The per-disk columns kept inside the rows of ``S`` and ``E``, as 1-D views
+    (writable, strided): ``(stamp, nxt, prv, qt, tc, invm)``."""
+    si = S.view(np.int32)
+    ef = E.view(np.float64)
+    return (si[:, STAMP], si[:, GNEXT], si[:, GPREV], ef[:, queue.QT], ef[:, TC],
+            ef[:, INVM])
 
 
 @njit(inline="always")
@@ -148,7 +171,7 @@ def _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy, best, p
 
 
 @njit(inline="always")
-def _schedule(i, t, x, y, vx, vy, cx, cy, S, E, gi, gf):
+def _schedule(i, t, x, y, vx, vy, cx, cy, tc, E, gi, gf):
     """The time of disk ``i``'s next event: the earlier of its kept candidate and
     leaving its cell (whose direction is recorded in ``E[i, KIND]``)."""
     dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
@@ -159,11 +182,11 @@ def _schedule(i, t, x, y, vx, vy, cx, cy, S, E, gi, gf):
     else:
         aux = 0 if dirx > 0 else 1
     E[i, KIND] = (E[i, KIND] & _KIND_MASK) | (aux << 4)
-    return min(S[i, TC], t + dtx)
+    return min(tc[i], t + dtx)
 
 
 @njit(inline="always")
-def predict(i, t, direction, S, E, stamp, gi, gf, head, nxt,
+def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
             wa, wb, wstart, wwall, wsx, wsy):
     """Predict disk ``i``'s next event from time ``t``, keep its best non-crossing
     candidate, and return the time of the scheduled event.
@@ -197,7 +220,7 @@ def predict(i, t, direction, S, E, stamp, gi, gf, head, nxt,
             ox0, ox1, oy0, oy1 = -1, 1, 1, 1
         else:
             ox0, ox1, oy0, oy1 = -1, 1, -1, -1
-        best = S[i, TC] - t
+        best = tc[i] - t
         kind = NONE  # stays NONE unless something beats the kept candidate
         aux = 0
     else:
@@ -242,12 +265,12 @@ def predict(i, t, direction, S, E, stamp, gi, gf, head, nxt,
         aux = aw
         pst = 0
     if not partial or kind != NONE:
-        S[i, TC] = t + best
+        tc[i] = t + best
         E[i, KIND] = kind
         E[i, PARTNER] = partner
         E[i, AUX] = aux
         E[i, PSTAMP] = pst
-    return _schedule(i, t, x, y, vx, vy, cx, cy, S, E, gi, gf)
+    return _schedule(i, t, x, y, vx, vy, cx, cy, tc, E, gi, gf)
 
 
 @njit(inline="always")
@@ -274,13 +297,13 @@ def _advance(i, t, S):
 
 
 @njit(inline="always")
-def _reflect(i, nx, ny, S, acc, slot):
+def _reflect(i, nx, ny, S, invm, acc, slot):
     """Mirror the velocity of disk ``i`` in the unit normal ``n`` (if approaching)."""
     vn = S[i, VX] * nx + S[i, VY] * ny
     if vn < 0.0:
         S[i, VX] -= 2.0 * vn * nx
         S[i, VY] -= 2.0 * vn * ny
-        acc[slot] += -2.0 * vn / S[i, INVM]
+        acc[slot] += -2.0 * vn / invm[i]
 
 
 # Buckets ahead of the current one that the lookahead reaches (see _lookahead)
@@ -288,10 +311,10 @@ _AHEAD = 5
 
 
 @njit(inline="always")
-def _prefetch_cells(c, ox0, ox1, oy0, oy1, heads, S, gi, head, nxt):
+def _prefetch_cells(c, ox0, ox1, oy0, oy1, heads, S, gi, head):
     """Prefetch for the cells at offsets ``[ox0, ox1] x [oy0, oy1]`` from cell ``c``
-    their list heads (``heads``), or else the state row and list link of their first
-    disks.  A block that crosses an edge of the grid is left out (a hint may miss:
+    their list heads (``heads``), or else the state row (with its list link) of their
+    first disks.  A block that crosses an edge of the grid is left out (a hint may miss:
     0.3 % of the cells at N = 10^6), which spares the wrapping arithmetic."""
     ncx = gi[0]
     cy = c // ncx
@@ -308,7 +331,6 @@ def _prefetch_cells(c, ox0, ox1, oy0, oy1, heads, S, gi, head, nxt):
             j = head[row + ox]
             if j >= 0:
                 prefetch(S, j)
-                prefetch(nxt, j)
 
 
 @njit
@@ -325,7 +347,7 @@ def _exposed(direction):
 
 
 @kernel
-def _lookahead(cur, S, E, qt, stamp, gi, head, nxt, qhead, mask):
+def _lookahead(cur, S, E, qt, tc, gi, head, qhead, mask):
     """Prefetch, as the calendar reaches bucket ``cur``, what the events of the next
     ``_AHEAD`` buckets will load, a stage at a time.  (A hint only: no effect on results.)
 
@@ -338,8 +360,8 @@ def _lookahead(cur, S, E, qt, stamp, gi, head, nxt, qhead, mask):
     events) earlier.  (Not always: the calendar may step over empty buckets, and a new
     event joins a list at its head, shifting ``k``; a hint that misses costs a miss.)
 
-    0. the disk's bookkeeping row (which holds its list link) and queue time;
-    1. its state row, its kept partner's rows, the list heads of its 3x3 cells;
+    0. the disk's bookkeeping row (which holds its list link and queue time);
+    1. its state row, its kept partner's two rows, the list heads of its 3x3 cells;
     2. if its event is a cell crossing, the list heads of the cells the crossing
        exposes; otherwise the first disk of each of its 9 cells and the list heads
        of the partner's cells;
@@ -358,7 +380,6 @@ def _lookahead(cur, S, E, qt, stamp, gi, head, nxt, qhead, mask):
             stage = _AHEAD - d - k
             if stage == 0:
                 prefetch(E, h)
-                prefetch(qt, h)
                 break
             if stage <= 3:
                 # Up to two blocks of cells: ``own`` with the given offsets, and the
@@ -374,8 +395,7 @@ def _lookahead(cur, S, E, qt, stamp, gi, head, nxt, qhead, mask):
                     if partner >= 0:
                         prefetch(S, partner)
                         prefetch(E, partner)
-                        prefetch(stamp, partner)
-                elif qt[h] < S[h, TC]:  # a cell crossing: only the exposed cells
+                elif qt[h] < tc[h]:  # a cell crossing: only the exposed cells
                     ox0, ox1, oy0, oy1 = _exposed(E[h, KIND] >> 4)
                     heads = stage == 2
                 elif stage == 2:
@@ -391,7 +411,7 @@ def _lookahead(cur, S, E, qt, stamp, gi, head, nxt, qhead, mask):
                 # once per distinct literal argument otherwise.)
                 for cell in (own, other):
                     if cell >= 0:
-                        _prefetch_cells(cell, ox0, ox1, oy0, oy1, heads, S, gi, head, nxt)
+                        _prefetch_cells(cell, ox0, ox1, oy0, oy1, heads, S, gi, head)
                     ox0, ox1, oy0, oy1 = -1, 1, -1, 1
                     heads = heads_other
             h = E[h, queue.NEXT]
@@ -399,9 +419,9 @@ def _lookahead(cur, S, E, qt, stamp, gi, head, nxt, qhead, mask):
 
 @kernel
 def run(t_end, max_collisions, max_events,
-        S, E, stamp, image, gi, gf, head, nxt, prv,
+        S, E, stamp, nxt, prv, qt, tc, invm, image, gi, gf, head,
         wa, wb, wstart, wwall, wsx, wsy,
-        qt, hv, qhead, qs, qf,
+        hv, qhead, qs, qf,
         counts, acc, out, info, log_t, log_e, log_n, order, mode):
     """Process events in time order (``mode`` RUN_EVENTS), or (``mode`` PREDICT_ALL)
     predict every disk's next event from the time ``out[0]`` and rebuild the queue.
@@ -452,7 +472,7 @@ def run(t_end, max_collisions, max_events,
                 break
             if qs[queue.CUR] != opened and qs[queue.LOOKAHEAD] != 0:
                 opened = qs[queue.CUR]
-                _lookahead(opened, S, E, qt, stamp, gi, head, nxt, qhead, qs[queue.MASK])
+                _lookahead(opened, S, E, qt, tc, gi, head, qhead, qs[queue.MASK])
             t = qt[i]
             # The next events are most likely those of the heap root's children: start
             # loading their rows now (at large N each is a cache miss otherwise).
@@ -470,7 +490,7 @@ def run(t_end, max_collisions, max_events,
             if n_ev >= max_events:
                 status = REACHED_EVENT_LIMIT
                 break
-            if t < S[i, TC]:
+            if t < tc[i]:
                 kind = CROSS
                 partner = -1
                 aux = E[i, KIND] >> 4
@@ -490,7 +510,7 @@ def run(t_end, max_collisions, max_events,
                     # The partner changed course since this was predicted: re-predict i only.
                     redo0 = i
                     stale = True
-                elif S[i, INVM] == 0.0 and S[j, INVM] == 0.0:
+                elif invm[i] == 0.0 and invm[j] == 0.0:
                     info[0] = i
                     info[1] = j
                     status = ERR_IMMOVABLE_PAIR
@@ -509,8 +529,8 @@ def run(t_end, max_collisions, max_events,
                     if dvn < 0.0:
                         # Impulse J along n: momentum J n moves from j to i; with the reduced
                         # mass this reverses the normal relative velocity (elastic).
-                        wi = S[i, INVM]
-                        wj = S[j, INVM]
+                        wi = invm[i]
+                        wj = invm[j]
                         impulse = -2.0 * dvn / (wi + wj)
                         S[i, VX] += impulse * wi * nx
                         S[i, VY] += impulse * wi * ny
@@ -530,7 +550,7 @@ def run(t_end, max_collisions, max_events,
                     redo0 = i
                     redo1 = j
             elif kind == SEGMENT or kind == BOX:
-                if S[i, INVM] == 0.0:
+                if invm[i] == 0.0:
                     info[0] = i
                     info[1] = partner if kind == SEGMENT else -1 - aux
                     status = ERR_IMMOVABLE_WALL
@@ -540,9 +560,9 @@ def run(t_end, max_collisions, max_events,
                     # Lower wall: normal +e; upper wall: normal -e.
                     sign = 1.0 if aux % 2 == 0 else -1.0
                     if aux < 2:
-                        _reflect(i, sign, 0.0, S, acc, A_BOX + aux)
+                        _reflect(i, sign, 0.0, S, invm, acc, A_BOX + aux)
                     else:
-                        _reflect(i, 0.0, sign, S, acc, A_BOX + aux)
+                        _reflect(i, 0.0, sign, S, invm, acc, A_BOX + aux)
                 else:
                     part = aux % 3
                     code = aux // 3
@@ -569,7 +589,7 @@ def run(t_end, max_collisions, max_events,
                         ln = math.sqrt(nx * nx + ny * ny)
                         nx /= ln
                         ny /= ln
-                    _reflect(i, nx, ny, S, acc, A_SEGMENTS)
+                    _reflect(i, nx, ny, S, invm, acc, A_SEGMENTS)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1
@@ -614,7 +634,7 @@ def run(t_end, max_collisions, max_events,
             else:
                 d = redo0 if k == 0 else redo1
                 dk = direction if k == 0 else -1
-            t_new = predict(d, t, dk, S, E, stamp, gi, gf, head, nxt,
+            t_new = predict(d, t, dk, S, E, tc, stamp, gi, gf, head, nxt,
                             wa, wb, wstart, wwall, wsx, wsy)
             if mode == PREDICT_ALL:
                 qt[d] = t_new

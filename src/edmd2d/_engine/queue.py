@@ -17,13 +17,15 @@ expression, so an earlier time never lands in a later bucket.
 Arrays (``N`` disks):
 
 ``qt[i]``
-    the scheduled time of disk ``i`` (``inf``: nothing scheduled, not queued);
+    the scheduled time of disk ``i`` (``inf``: nothing scheduled, not queued): a
+    strided view of the float64 column ``QT`` of the engine's per-disk table ``E``
+    (``E.view(np.float64)[:, QT]``), so that it shares the disk's cache line with its
+    links;
 ``ql[i, NEXT]``, ``ql[i, PREV]``, ``ql[i, LOC]``
-    (int32; the last three columns of the engine's per-disk table ``E``, whose first
-    columns belong to the event loop, so that a disk's links share its row)
-    ``NEXT``/``PREV`` link ``i`` in its bucket list; ``LOC`` is ``i``'s slot in the
-    heap if ``>= 0``, ``-1`` if not queued, or ``-2 - list`` if in list ``list``
-    (``nb`` is the overflow list);
+    (int32 columns of ``E``, whose other columns belong to the event loop, see
+    loop.py) ``NEXT``/``PREV`` link ``i`` in its bucket list; ``LOC`` is ``i``'s slot
+    in the heap if ``>= 0``, ``-1`` if not queued, or ``-2 - list`` if in list
+    ``list`` (``nb`` is the overflow list);
 ``hv[k]`` (int32)
     the heap of the current bucket: the disk at slot ``k``;
 ``qhead[nb + 1]``
@@ -51,9 +53,11 @@ from . import aligned_rows, prefetch
 
 INF = math.inf
 
-# Columns of ql (the engine's table E, see loop.py)
+# Columns of ql (the engine's table E, see loop.py): int32 columns, and the float64
+# column (of E.view(np.float64)) that holds qt.  One row is 64 bytes: a cache line.
 NEXT, PREV, LOC = 5, 6, 7
-N_QL = 8
+QT = 4
+N_QL = 16
 # qs: current bucket, heap size, events in the year's lists, events in overflow,
 # nb - 1, bucket at which the overflow is next scanned, heap insertions and bucket
 # steps since the bucket width was last checked, and whether the event loop prefetches
@@ -76,7 +80,8 @@ _RETUNE_FACTOR = 8.0
 
 def allocate(n):
     """Arrays for a queue of ``n`` disks: ``(qt, ql, hv, qhead, qs, qf)``; ``ql`` is
-    the engine's whole per-disk table ``E`` (32-byte rows, 32-byte aligned)."""
+    the engine's whole per-disk table ``E`` (64-byte rows, 64-byte aligned; columns
+    the queue does not use start as -1) and ``qt`` a view of its column ``QT``."""
     nb = 16
     while nb < n:
         nb *= 2
@@ -85,10 +90,11 @@ def allocate(n):
     qs[LOOKAHEAD] = 1 if n >= LOOKAHEAD_MIN_DISKS else 0
     qf = np.zeros(N_QF, np.float64)
     qf[INVW] = 1.0
-    ql = aligned_rows(n, N_QL, np.int32, align=32)
+    ql = aligned_rows(n, N_QL, np.int32)
     ql[:] = -1
-    return (np.full(n, INF), ql, np.full(n, -1, np.int32), np.full(nb + 1, -1, np.int32),
-            qs, qf)
+    qt = ql.view(np.float64)[:, QT]
+    qt[:] = INF
+    return qt, ql, np.full(n, -1, np.int32), np.full(nb + 1, -1, np.int32), qs, qf
 
 
 @njit(inline="always")

@@ -194,8 +194,7 @@ class Simulation:
         queue = _queue.allocate(n)
         self._mass = mass
         self._time = float(t0)
-        vars(self).update(self._tables(state, queue))
-        self._stamp[:] = 0
+        vars(self).update(self._tables(state, queue))  # (the stamps start at 0)
         with np.errstate(divide="ignore"):
             self._invm[:] = np.where(np.isinf(mass), 0.0, 1.0 / mass)
         self._tc[:] = np.inf
@@ -289,16 +288,39 @@ class Simulation:
             )
 
     # ------------------------------------------------------------------ engine calls
-    @staticmethod
-    def _tables(state, queue) -> dict:
+    # Per-disk columns that are views into the rows of _S and _E (loop.row_views).
+    _ROW_VIEWS = ("_stamp", "_nxt", "_prv", "_qt", "_tc", "_invm")
+
+    @classmethod
+    def _tables(cls, state, queue) -> dict:
         """The attributes for the state table ``S``, the queue's arrays (the table
-        ``E`` among them) and the per-disk columns that are views into ``S`` and ``E``:
-        to be installed together, by one ``vars(self).update``."""
-        names = ("_qt", "_E", "_hv", "_qhead", "_qs", "_qf")
-        attrs = dict(zip(names, queue), _S=state)
-        views = _loop.row_views(state, queue[1])
-        attrs.update(zip(("_stamp", "_nxt", "_prv", "_qt", "_tc", "_invm"), views))
+        ``E`` among them; its time column ``qt`` comes with the views) and the per-disk
+        columns that are views into ``S`` and ``E``: to be installed together, by one
+        ``vars(self).update``."""
+        attrs = dict(zip(("_E", "_hv", "_qhead", "_qs", "_qf"), queue[1:]), _S=state)
+        attrs.update(zip(cls._ROW_VIEWS, _loop.row_views(state, queue[1])))
         return attrs
+
+    def __getstate__(self) -> dict:
+        """For pickle and ``copy.deepcopy``: without the views into ``S`` and ``E``,
+        which a copy would turn into arrays of their own, detached from the copied
+        tables; :meth:`__setstate__` rebuilds them."""
+        state = dict(vars(self))
+        for name in self._ROW_VIEWS:
+            del state[name]
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        state = dict(state)
+        tables = []
+        for name in ("_S", "_E"):  # (back on 64-byte boundaries: a copy may not be)
+            table = aligned_rows(*state[name].shape, state[name].dtype)
+            table[:] = state.pop(name)
+            tables.append(table)
+        queue = (None, tables[1], state.pop("_hv"), state.pop("_qhead"), state.pop("_qs"),
+                 state.pop("_qf"))
+        state.update(self._tables(tables[0], queue))
+        vars(self).update(state)
 
     def _wall_args(self):
         return (self._wa, self._wb, self._wstart, self._wwall, self._wsx, self._wsy)
@@ -330,7 +352,8 @@ class Simulation:
         inv = np.empty_like(perm)
         inv[perm] = np.arange(len(perm))
         # (Whole rows move: the stamps with S, the queue times, candidate times and
-        # inverse masses with E; the cell and queue links are rebuilt.)
+        # inverse masses with E.  The cell lists and the queue are rebuilt; queue
+        # links left in the rows of disks that end up outside the lists go unread.)
         state = aligned_rows(len(perm), _loop.N_STATE, np.float64)
         state[:] = self._S[perm]
         queue = _queue.allocate(len(perm))
@@ -342,7 +365,7 @@ class Simulation:
         _, nxt, prv, times, _, _ = _loop.row_views(state, table)
         head = np.empty_like(self._head)
         _grid.build_lists(table[:, _loop.CELL], head, nxt, prv)
-        _queue.build(self._time, times.copy(), *queue)
+        _queue.build(self._time, times, *queue)  # (times is queue[0]: as in the loop)
         vars(self).update(self._tables(state, queue), _mass=self._mass[perm],
                           _order=self._order[perm], _image=self._image[perm], _head=head,
                           _since_reorder=0)

@@ -3,16 +3,16 @@
 State layout: two tables of 64-byte rows (64-byte aligned: a row is one cache line).
 
 ``S[i]``, what other disks read of disk ``i`` when they predict against it:
-float64 columns ``(x, y, vx, vy, t_local, radius)`` and, in its last 8 bytes (int32
-columns 12-14 of ``S.view(np.int32)``), ``stamp[i]`` (the invalidation counter) and
-``nxt[i]``, ``prv[i]`` (its links in its grid cell's list).
+float64 columns ``(x, y, vx, vy, t_local, radius)`` and, in its last 16 bytes (int32
+columns 12-14 of ``S.view(np.int32)``; 15 is unused, 0), ``stamp[i]`` (the invalidation
+counter) and ``nxt[i]``, ``prv[i]`` (its links in its grid cell's list).
 
 ``E[i]``, what only disk ``i``'s own events use: int32 columns
 
 ``(cell, kind, partner, aux, partner_stamp, next, prev, loc)``
 
-and float64 columns 4-6 (of ``E.view(np.float64)``) ``qt[i], tc[i], invm[i]``: its
-scheduled time, the time of its kept candidate, and 1/mass.
+and float64 columns 4-6 (of ``E.view(np.float64)``; 7 is unused) ``qt[i], tc[i],
+invm[i]``: its scheduled time, the time of its kept candidate, and 1/mass.
 
 ``kind, partner, aux, partner_stamp`` (with time ``tc[i]``) is the kept candidate
 ``nc``: the best event that is *not* a cell crossing; ``next, prev, loc`` are disk
@@ -64,12 +64,12 @@ from .predict import INF, box_wall_time, exit_time, pair_time, segment_time
 # Float64 columns of S, and int32 columns of S.view(np.int32)
 X, Y, VX, VY, T, R = 0, 1, 2, 3, 4, 5
 N_STATE = 8
-STAMP, GNEXT, GPREV = 12, 13, 14
+S_STAMP, S_NEXT, S_PREV = 12, 13, 14
 
 # Int32 columns of E (NEXT, PREV and LOC belong to the queue), and float64 columns of
 # E.view(np.float64) (QT belongs to the queue)
 CELL, KIND, PARTNER, AUX, PSTAMP = 0, 1, 2, 3, 4
-TC, INVM = 5, 6
+E_TC, E_INVM = 5, 6
 _KIND_MASK = 15  # low bits of E[:, KIND]; the bits above hold the crossing direction
 
 # Event kinds
@@ -114,8 +114,8 @@ def row_views(S, E):
     (writable, strided): ``(stamp, nxt, prv, qt, tc, invm)``."""
     si = S.view(np.int32)
     ef = E.view(np.float64)
-    return (si[:, STAMP], si[:, GNEXT], si[:, GPREV], ef[:, queue.QT], ef[:, TC],
-            ef[:, INVM])
+    return (si[:, S_STAMP], si[:, S_NEXT], si[:, S_PREV], ef[:, queue.QT], ef[:, E_TC],
+            ef[:, E_INVM])
 
 
 @njit(inline="always")

@@ -167,6 +167,20 @@ def _link(i, lst, ql, qhead):
 
 
 @kernel
+def _link_at(i, x, ql, qhead, qs):
+    """Link disk ``i`` into the list of bucket ``x`` (not the current one), or the
+    overflow list beyond the year.  (A call with few array arguments: numba passes each
+    array field by field, and the event loop calls this twice per collision.)"""
+    nb = qs[MASK] + 1
+    if x < qs[CUR] + nb:
+        _link(i, np.int64(x) & qs[MASK], ql, qhead)
+        qs[NLIST] += 1
+    else:
+        _link(i, nb, ql, qhead)
+        qs[NOVER] += 1
+
+
+@kernel
 def _place(i, qt, ql, hv, qhead, qs, qf):
     """Queue disk ``i`` (not queued) at its time ``qt[i]``."""
     t = qt[i]
@@ -229,7 +243,13 @@ def set_time(i, t, qt, ql, hv, qhead, qs, qf):
         return
     _take(i, qt, ql, hv, qhead, qs)
     qt[i] = t
-    _place(i, qt, ql, hv, qhead, qs, qf)
+    x = (t - qf[ORIGIN]) * qf[INVW]
+    if t == INF:
+        ql[i, LOC] = -1
+    elif x < qs[CUR] + 1:
+        _heap_push(i, qt, ql, hv, qs)
+    else:
+        _link_at(i, x, ql, qhead, qs)
 
 
 @njit(inline="always")

@@ -180,24 +180,24 @@ def _link_at(i, x, ql, qhead, qs):
         qs[NOVER] += 1
 
 
-@kernel
-def _place(i, qt, ql, hv, qhead, qs, qf):
-    """Queue disk ``i`` (not queued) at its time ``qt[i]``."""
-    t = qt[i]
+@njit(inline="always")
+def _put(i, t, qt, ql, hv, qhead, qs, qf):
+    """Queue disk ``i`` (not queued) at its time ``t == qt[i]``: into the heap if in
+    the current bucket, else into a list through :func:`_link_at`."""
     if t == INF:
         ql[i, LOC] = -1
         return
     x = (t - qf[ORIGIN]) * qf[INVW]
-    cur = qs[CUR]
-    nb = qs[MASK] + 1
-    if x < cur + 1:
+    if x < qs[CUR] + 1:
         _heap_push(i, qt, ql, hv, qs)
-    elif x < cur + nb:
-        _link(i, np.int64(x) & qs[MASK], ql, qhead)
-        qs[NLIST] += 1
     else:
-        _link(i, nb, ql, qhead)
-        qs[NOVER] += 1
+        _link_at(i, x, ql, qhead, qs)
+
+
+@kernel
+def _place(i, qt, ql, hv, qhead, qs, qf):
+    """Queue disk ``i`` (not queued) at its time ``qt[i]``."""
+    _put(i, qt[i], qt, ql, hv, qhead, qs, qf)
 
 
 @njit(inline="always")
@@ -243,13 +243,8 @@ def set_time(i, t, qt, ql, hv, qhead, qs, qf):
         return
     _take(i, qt, ql, hv, qhead, qs)
     qt[i] = t
-    x = (t - qf[ORIGIN]) * qf[INVW]
-    if t == INF:
-        ql[i, LOC] = -1
-    elif x < qs[CUR] + 1:
-        _heap_push(i, qt, ql, hv, qs)
-    else:
-        _link_at(i, x, ql, qhead, qs)
+    # (Inlined here, not through _place: a call passes each array field by field.)
+    _put(i, t, qt, ql, hv, qhead, qs, qf)
 
 
 @njit(inline="always")

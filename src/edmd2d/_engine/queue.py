@@ -180,10 +180,10 @@ def _link_at(i, x, ql, qhead, qs):
         qs[NOVER] += 1
 
 
-@njit(inline="always")
-def _put(i, t, qt, ql, hv, qhead, qs, qf):
-    """Queue disk ``i`` (not queued) at its time ``t == qt[i]``: into the heap if in
-    the current bucket, else into a list through :func:`_link_at`."""
+@kernel
+def _place(i, qt, ql, hv, qhead, qs, qf):
+    """Queue disk ``i`` (not queued) at its time ``qt[i]``."""
+    t = qt[i]
     if t == INF:
         ql[i, LOC] = -1
         return
@@ -192,12 +192,6 @@ def _put(i, t, qt, ql, hv, qhead, qs, qf):
         _heap_push(i, qt, ql, hv, qs)
     else:
         _link_at(i, x, ql, qhead, qs)
-
-
-@kernel
-def _place(i, qt, ql, hv, qhead, qs, qf):
-    """Queue disk ``i`` (not queued) at its time ``qt[i]``."""
-    _put(i, qt[i], qt, ql, hv, qhead, qs, qf)
 
 
 @njit(inline="always")
@@ -243,8 +237,13 @@ def set_time(i, t, qt, ql, hv, qhead, qs, qf):
         return
     _take(i, qt, ql, hv, qhead, qs)
     qt[i] = t
-    # (Inlined here, not through _place: a call passes each array field by field.)
-    _put(i, t, qt, ql, hv, qhead, qs, qf)
+    # The common case, a later bucket's list, through a call with few arrays (numba
+    # passes each array field by field); the heap and "none" through _place.
+    x = (t - qf[ORIGIN]) * qf[INVW]
+    if t < INF and x >= qs[CUR] + 1:
+        _link_at(i, x, ql, qhead, qs)
+    else:
+        _place(i, qt, ql, hv, qhead, qs, qf)
 
 
 @njit(inline="always")

@@ -194,7 +194,7 @@ class Simulation:
         queue = _queue.allocate(n)
         self._mass = mass
         self._time = float(t0)
-        vars(self).update(self._tables(state, queue))  # (the stamps start at 0)
+        vars(self).update(self._tables(state, *queue[1:]))  # (the stamps start at 0)
         with np.errstate(divide="ignore"):
             self._invm[:] = np.where(np.isinf(mass), 0.0, 1.0 / mass)
         self._tc[:] = np.inf
@@ -292,13 +292,12 @@ class Simulation:
     _ROW_VIEWS = ("_stamp", "_nxt", "_prv", "_qt", "_tc", "_invm")
 
     @classmethod
-    def _tables(cls, state, queue) -> dict:
-        """The attributes for the state table ``S``, the queue's arrays (the table
-        ``E`` among them; its time column ``qt`` comes with the views) and the per-disk
-        columns that are views into ``S`` and ``E``: to be installed together, by one
-        ``vars(self).update``."""
-        attrs = dict(zip(("_E", "_hv", "_qhead", "_qs", "_qf"), queue[1:]), _S=state)
-        attrs.update(zip(cls._ROW_VIEWS, _loop.row_views(state, queue[1])))
+    def _tables(cls, state, table, hv, qhead, qs, qf) -> dict:
+        """The attributes for the tables ``S`` and ``E``, the queue's other arrays and
+        the per-disk columns that are views into ``S`` and ``E`` (the queue times among
+        them): to be installed together, by one ``vars(self).update``."""
+        attrs = dict(_S=state, _E=table, _hv=hv, _qhead=qhead, _qs=qs, _qf=qf)
+        attrs.update(zip(cls._ROW_VIEWS, _loop.row_views(state, table)))
         return attrs
 
     def __getstate__(self) -> dict:
@@ -317,9 +316,8 @@ class Simulation:
             table = aligned_rows(*state[name].shape, state[name].dtype)
             table[:] = state.pop(name)
             tables.append(table)
-        queue = (None, tables[1], state.pop("_hv"), state.pop("_qhead"), state.pop("_qs"),
-                 state.pop("_qf"))
-        state.update(self._tables(tables[0], queue))
+        state.update(self._tables(*tables, *(state.pop(name) for name in
+                                             ("_hv", "_qhead", "_qs", "_qf"))))
         vars(self).update(state)
 
     def _wall_args(self):
@@ -366,7 +364,7 @@ class Simulation:
         head = np.empty_like(self._head)
         _grid.build_lists(table[:, _loop.CELL], head, nxt, prv)
         _queue.build(self._time, times, *queue)  # (times is queue[0]: as in the loop)
-        vars(self).update(self._tables(state, queue), _mass=self._mass[perm],
+        vars(self).update(self._tables(state, *queue[1:]), _mass=self._mass[perm],
                           _order=self._order[perm], _image=self._image[perm], _head=head,
                           _since_reorder=0)
 

@@ -217,7 +217,9 @@ def test_lookahead_kernel_writes_nothing(periodic):
     before = [a.copy() for a in arrays]
     mask = int(sim._qs[queue.MASK])
     for cur in range(int(sim._qs[queue.CUR]), int(sim._qs[queue.CUR]) + mask + 2):
-        loop._lookahead(cur, *arrays, mask)
+        # (As the list just moved into the heap, none, or any list: hints all.)
+        for first in (-1, int(sim._qhead[(cur + 7) & mask])):
+            loop._lookahead(cur, first, *arrays, mask)
     assert all(_same_bits(a, b) for a, b in zip(arrays, before))
     assert (sim._qhead >= 0).sum() > 100  # the lists it walked were not empty
 

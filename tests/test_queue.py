@@ -59,6 +59,19 @@ def check_queue(qt, ql, hv, qhead, qs, qf):
     return set(seen)
 
 
+def check_first(qt, ql, hv, qhead, qs, qf):
+    """Right after ``top`` moved the calendar on: the links from ``qs[FIRST]`` (the
+    lookahead's way into the bucket just reached) run through disks now in the heap,
+    each once."""
+    heap = {int(d) for d in hv[:qs[q.NHEAP]]}
+    d, walked = int(qs[q.FIRST]), []
+    while d >= 0:
+        assert d in heap and d not in walked
+        walked.append(d)
+        d = int(ql[d, q.NEXT])
+    return walked
+
+
 def earliest(qt):
     finite = np.flatnonzero(qt < np.inf)
     if not len(finite):
@@ -75,8 +88,11 @@ def drive(n, now, times, updates):
     q.build(now, np.asarray(times, float), *arrays)
     check_queue(*arrays)
     for disk, dt, pop in updates:
+        cur = int(arrays[4][q.CUR])
         top = q.top(*arrays)
         assert top == earliest(qt)
+        if arrays[4][q.CUR] != cur:
+            check_first(*arrays)
         if top >= 0:
             now = qt[top]
         if pop and top >= 0:
@@ -177,3 +193,20 @@ def test_queue_leaves_the_loops_columns_alone():
         q.set_time(i, qt[i] + rng.exponential(1.0), *arrays)
     assert (ql[:, :q.NEXT] == 12345).all()
     assert (floats[:, loop.E_TC] == 7.5).all() and (floats[:, loop.E_INVM] == 0.25).all()
+
+
+def test_first_names_the_list_just_moved_into_the_heap():
+    # Three disks share a later bucket's list: once the calendar reaches that bucket,
+    # qs[FIRST] leads through exactly those three.
+    arrays = q.allocate(16)
+    qt, ql, qs = arrays[0], arrays[1], arrays[4]
+    times = np.arange(16.0)
+    times[[2, 4, 5]] = [10.1, 10.2, 10.3]
+    times[10] = 20.0
+    q.build(0.0, times, *arrays)
+    loc = ql[:, q.LOC]
+    assert loc[2] <= -2 and (np.flatnonzero(loc == loc[2]) == [2, 4, 5]).all()
+    while (i := q.top(*arrays)) not in (2, 4, 5):
+        q.set_time(i, math.inf, *arrays)
+    assert sorted(check_first(*arrays)) == [2, 4, 5]
+    check_queue(*arrays)

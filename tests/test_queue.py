@@ -199,7 +199,7 @@ def test_first_names_the_list_just_moved_into_the_heap():
     # Three disks share a later bucket's list: once the calendar reaches that bucket,
     # qs[FIRST] leads through exactly those three.
     arrays = q.allocate(16)
-    qt, ql, qs = arrays[0], arrays[1], arrays[4]
+    ql = arrays[1]
     times = np.arange(16.0)
     times[[2, 4, 5]] = [10.1, 10.2, 10.3]
     times[10] = 20.0

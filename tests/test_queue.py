@@ -59,16 +59,32 @@ def check_queue(qt, ql, hv, qhead, qs, qf):
     return set(seen)
 
 
-def check_first(qt, ql, hv, qhead, qs, qf):
+def snapshot(qt, ql, hv, qhead, qs, qf):
+    """What :func:`check_first` compares with: the queue's state before a ``top``."""
+    return (qs.copy(), qf.copy(), qhead.copy(), ql[:, q.NEXT].copy())
+
+
+def check_first(qt, ql, hv, qhead, qs, qf, before=None):
     """Right after ``top`` moved the calendar on: the links from ``qs[FIRST]`` (the
     lookahead's way into the bucket just reached) run through disks now in the heap,
-    each once."""
+    each once.  Given the ``snapshot`` from before that ``top``, and if the heap was
+    then empty and ``top`` only stepped from bucket to bucket (no retuning, restart or
+    overflow scan), they run through exactly the list the new bucket had then."""
     heap = {int(d) for d in hv[:qs[q.NHEAP]]}
     d, walked = int(qs[q.FIRST]), []
     while d >= 0:
         assert d in heap and d not in walked
         walked.append(d)
         d = int(ql[d, q.NEXT])
+    if before is not None:
+        qs0, qf0, qhead0, next0 = before
+        if (qs0[q.NHEAP] == 0 and (qf0 == qf).all() and qs[q.CUR] < qs0[q.BOUNDARY]
+                and qs[q.CUR] > qs0[q.CUR]):
+            d, listed = int(qhead0[qs[q.CUR] & qs[q.MASK]]), []
+            while d >= 0:
+                listed.append(d)
+                d = int(next0[d])
+            assert walked == listed and set(listed) == heap
     return walked
 
 
@@ -88,11 +104,11 @@ def drive(n, now, times, updates):
     q.build(now, np.asarray(times, float), *arrays)
     check_queue(*arrays)
     for disk, dt, pop in updates:
-        cur = int(arrays[4][q.CUR])
+        before = snapshot(*arrays)
         top = q.top(*arrays)
         assert top == earliest(qt)
-        if arrays[4][q.CUR] != cur:
-            check_first(*arrays)
+        if arrays[4][q.CUR] != before[0][q.CUR]:
+            check_first(*arrays, before)
         if top >= 0:
             now = qt[top]
         if pop and top >= 0:
@@ -133,16 +149,19 @@ def test_rate_change_retunes_bucket_width():
     rng = np.random.default_rng(7)
     n = 300
     arrays = q.allocate(n)
-    qt, qf = arrays[0], arrays[5]
+    qt, qs, qf = arrays[0], arrays[4], arrays[5]
     q.build(0.0, rng.exponential(1.0, n), *arrays)
     for scale in (1e-4, 1e4):
         now = qt[q.top(*arrays)]
         for i in range(n):
             q.set_time(i, now + rng.exponential(scale), *arrays)
         for k in range(40 * n):
+            cur = qs[q.CUR]
             i = q.top(*arrays)
             if k % 50 == 0:
                 assert i == earliest(qt)
+            if qs[q.CUR] != cur:  # (through retunes too: no stale qs[FIRST])
+                check_first(*arrays)
             q.set_time(i, qt[i] + rng.exponential(scale), *arrays)
         check_queue(*arrays)
         # Events processed per unit time ~ n / scale; one bucket is 1 / invw long.

@@ -362,10 +362,10 @@ def _lookahead(cur, first, S, E, qt, tc, gi, head, qhead, mask):
     event joins a list at its head, shifting ``k``; a hint that misses costs a miss.)
 
     ``d = 0`` is the bucket just reached, whose list ``top`` has moved into the heap:
-    it is walked from ``first`` (``qs[FIRST]``, -1: none).  There the third to fifth
-    disks of the list get their last stages, which a list of 2-3 events (the calendar's
-    target) would otherwise never give them: +4-6 % at N = 10^6, where the scan had
-    waited on their neighbours' rows.
+    it is walked from ``first`` (``qs[FIRST]``, -1: none).  There the third to sixth
+    disks of the list get one stage more (the third its last), which a list of 2-3
+    events (the calendar's target) would otherwise never give them: +3-6 % at
+    N = 10^6, where the scan had waited on their neighbours' rows.
 
     0. the disk's bookkeeping row (which holds its list link and queue time);
     1. its state row, its kept partner's two rows, the list heads of its 3x3 cells;
@@ -374,7 +374,8 @@ def _lookahead(cur, first, S, E, qt, tc, gi, head, qhead, mask):
        of the partner's cells;
     3. the first disks of the exposed cells, or of the partner's cells.
 
-    (Stage 4, reached by the first disk of the next list, has nothing left to fetch.)
+    (Stages 4 and 5, reached by the first disks of the nearest lists, have nothing
+    left to fetch.)
 
     (Measured at N = 10^6 against prefetching also the second disks of the cells, and
     against wrapping at the grid's edges: both cost more than they saved.)
@@ -469,6 +470,7 @@ def run(t_end, max_collisions, max_events,
     t_redo0 = INF
     t_redo1 = INF
     opened = -1  # the calendar bucket the lookahead last ran for
+    qs[queue.FIRST] = -1  # (left by an earlier call: its list may have changed since)
     while True:
         if mode == PREDICT_ALL:
             npred = S.shape[0]

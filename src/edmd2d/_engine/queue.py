@@ -63,7 +63,8 @@ N_QL = 16
 # steps since the bucket width was last checked, whether the event loop prefetches
 # ahead along the lists (1) or not (0; see loop.py, _lookahead), and the first disk of
 # the list that ``top`` last moved into the heap (-1 if the heap was filled otherwise):
-# its links still run through that list until the heap's disks are re-queued.
+# its links run through that list only until one of the heap's disks is re-queued, so
+# it means something only right after the ``top`` that set it.
 CUR, NHEAP, NLIST, NOVER, MASK, BOUNDARY, LOADED, ADVANCED, LOOKAHEAD, FIRST = range(10)
 N_QS = 10
 # From this many disks on the working set has left the caches and the lookahead pays.

@@ -95,20 +95,46 @@ def test_reordering_changes_no_event():
     assert np.allclose(p1, p2, rtol=0, atol=1e-9) and np.allclose(v1, v2, rtol=0, atol=1e-9)
 
 
-@pytest.mark.parametrize("how", ["deepcopy", "pickle"])
+@pytest.mark.parametrize("how", ["deepcopy", "pickle", "copy"])
 def test_a_copy_runs_like_the_original(how):
     # The per-disk columns of a copy must be views into the copy's own tables (not
-    # arrays of their own), and the tables 64-byte aligned again.
+    # arrays of their own), and the tables 64-byte aligned again.  (A shallow copy
+    # would share the queue and grid with the original but not the tables: copy.copy
+    # copies everything.)
     sim = ed.make_gas(1500, 0.5, seed=4)
     sim._reorder_every = 997
     sim.advance(collisions=1000)
-    twin = copy.deepcopy(sim) if how == "deepcopy" else pickle.loads(pickle.dumps(sim))
+    twin = {"deepcopy": copy.deepcopy, "copy": copy.copy,
+            "pickle": lambda s: pickle.loads(pickle.dumps(s))}[how](sim)
+    assert not any(np.shares_memory(a, b) for a in vars(sim).values()
+                   for b in vars(twin).values()
+                   if isinstance(a, np.ndarray) and isinstance(b, np.ndarray))
     assert _view_offsets(twin) == _VIEW_OFFSETS
     assert twin._S.ctypes.data % 64 == 0 and twin._E.ctypes.data % 64 == 0
     sim.advance(collisions=5000)  # (with re-sorts on the way)
     twin.advance(collisions=5000)
     assert np.array_equal(sim.positions, twin.positions)
     assert sim.counts == twin.counts
+
+
+def test_unpickling_state_from_before_the_queue_kept_first():
+    # A pickle whose queue state lacks the last slot (qs[FIRST], added later) loads and
+    # runs like the original; any other length is refused instead of read past its end.
+    from edmd2d._engine import queue
+
+    sim = ed.make_gas(600, 0.5, seed=4)
+    sim.advance(collisions=500)
+    state = pickle.loads(pickle.dumps(sim)).__getstate__()  # (arrays of its own)
+    old = dict(state, _qs=state["_qs"][:queue.FIRST].copy())
+    twin = ed.Simulation.__new__(ed.Simulation)
+    twin.__setstate__(old)
+    assert len(twin._qs) == queue.N_QS and twin._qs[queue.FIRST] == -1
+    sim.advance(collisions=2000)
+    twin.advance(collisions=2000)
+    assert np.array_equal(sim.positions, twin.positions) and sim.counts == twin.counts
+    with pytest.raises(ValueError, match="incompatible version"):
+        ed.Simulation.__new__(ed.Simulation).__setstate__(
+            dict(state, _qs=state["_qs"][:queue.FIRST - 1]))
 
 
 @pytest.mark.parametrize("dtype, width, align", [(np.float64, 8, 64), (np.int32, 8, 32),

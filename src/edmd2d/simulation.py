@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Iterable
 from dataclasses import dataclass
@@ -309,8 +310,21 @@ class Simulation:
             del state[name]
         return state
 
+    def __copy__(self) -> Simulation:
+        """``copy.copy`` gives an independent copy too (as ``copy.deepcopy``): two
+        simulations sharing some of their arrays would corrupt each other."""
+        return copy.deepcopy(self)
+
     def __setstate__(self, state: dict) -> None:
         state = dict(state)
+        qs = state["_qs"]
+        if len(qs) == _queue.FIRST:  # (pickled before the queue kept qs[FIRST], a hint)
+            state["_qs"] = np.append(qs, -1)
+        elif len(qs) != _queue.N_QS:
+            raise ValueError(
+                "this Simulation was pickled by an incompatible version of edmd2d "
+                f"(queue state of {len(qs)} entries, expected {_queue.N_QS})"
+            )
         tables = []
         for name in ("_S", "_E"):  # (back on 64-byte boundaries: a copy may not be)
             table = aligned_rows(*state[name].shape, state[name].dtype)

@@ -46,8 +46,9 @@ From ``queue.LOOKAHEAD_MIN_DISKS`` disks on, the working set no longer fits the 
 and every event would wait, one miss after another, for its disk's rows, its partner's,
 its cells' list heads and its neighbours' rows.  Each time the calendar reaches a new
 bucket, ``_lookahead`` therefore prefetches these for the events of that bucket and
-the next few, one stage of that chain per bucket (see there).  It only reads and prefetches:
-results are bit-identical with it on or off (tested by forcing it on for small systems).
+the next few, one stage of that chain per bucket (see there).  It only reads and
+prefetches: results are bit-identical with it on or off (tested by forcing it on for
+small systems).
 """
 
 from __future__ import annotations

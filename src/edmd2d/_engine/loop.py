@@ -274,7 +274,7 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
     return _schedule(i, t, x, y, vx, vy, cx, cy, tc, E, gi, gf)
 
 
-@njit(inline="always")
+@njit
 def _step_cell(c, up, n):
     """The cell index one step up (``up``) or down an axis of ``n`` cells, and the
     periodic wrap that step makes: +1 past the far edge, -1 past the near one, else 0."""
@@ -289,7 +289,7 @@ def _step_cell(c, up, n):
     return c, 0
 
 
-@njit(inline="always")
+@njit
 def _advance(i, t, S):
     dt = t - S[i, T]
     S[i, X] += dt * S[i, VX]
@@ -570,10 +570,9 @@ def run(t_end, max_collisions, max_events,
                 if kind == BOX:
                     # Lower wall: normal +e; upper wall: normal -e.
                     sign = 1.0 if aux % 2 == 0 else -1.0
-                    if aux < 2:
-                        _reflect(i, sign, 0.0, S, invm, acc, A_BOX + aux)
-                    else:
-                        _reflect(i, 0.0, sign, S, invm, acc, A_BOX + aux)
+                    nx = sign if aux < 2 else 0.0
+                    ny = 0.0 if aux < 2 else sign
+                    slot = A_BOX + aux
                 else:
                     part = aux % 3
                     code = aux // 3
@@ -600,7 +599,9 @@ def run(t_end, max_collisions, max_events,
                         ln = math.sqrt(nx * nx + ny * ny)
                         nx /= ln
                         ny /= ln
-                    _reflect(i, nx, ny, S, invm, acc, A_SEGMENTS)
+                    slot = A_SEGMENTS
+                # (One call site: each inlined copy lengthens the first compilation.)
+                _reflect(i, nx, ny, S, invm, acc, slot)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1

@@ -298,7 +298,7 @@ def _replace_all(invw, qt, ql, hv, qhead, qs, qf):
             _place(i, qt, ql, hv, qhead, qs, qf)
 
 
-@njit(inline="always")
+@kernel
 def _scan_overflow(restart, qt, ql, hv, qhead, qs, qf):
     """Move the overflow events that now fall inside the year into their lists.  With
     ``restart`` the calendar first restarts at the earliest of them (bucket 0)."""

@@ -209,8 +209,15 @@ def _same_bits(a, b):
 
 
 def _assert_identical(runs):
+    """The same events, counts and rows, but for the lookahead's notes of the stages
+    given (E[:, STAGED]), which it must have written only when on."""
+    from edmd2d._engine import loop
+
     (ev_on, s_on, e_on, c_on), (ev_off, s_off, e_off, c_off) = runs
     assert ev_on == ev_off
+    assert (e_off[:, loop.STAGED] == 0).all() and (e_on[:, loop.STAGED] != 0).any()
+    e_on, e_off = e_on.copy(), e_off.copy()
+    e_on[:, loop.STAGED] = e_off[:, loop.STAGED] = 0
     assert _same_bits(s_on, s_off) and _same_bits(e_on, e_off)
     assert c_on == c_off
 
@@ -231,10 +238,26 @@ def test_lookahead_changes_no_event_and_no_state(periodic):
     _assert_identical(_runs_with_and_without_lookahead(build, 30_000, reorder_every=2999))
 
 
+def _assert_only_stages_noted(arrays, before):
+    """Every array as it was, but for stage bits (1-3) added to E[:, STAGED]."""
+    from edmd2d._engine import loop
+
+    e_now, e_then = arrays[1], before[1]
+    now, then = e_now[:, loop.STAGED], e_then[:, loop.STAGED]
+    assert (now & then == then).all()  # (bits are only added,)
+    assert (now & ~0b1110 == then & ~0b1110).all()  # (and only those of stages 1-3)
+    e_now, e_then = e_now.copy(), e_then.copy()
+    e_now[:, loop.STAGED] = e_then[:, loop.STAGED] = 0
+    assert _same_bits(e_now, e_then)
+    assert all(_same_bits(a, b) for i, (a, b) in enumerate(zip(arrays, before)) if i != 1)
+    return int((now != then).sum())
+
+
 @pytest.mark.parametrize("periodic", [True, False])
-def test_lookahead_kernel_writes_nothing(periodic):
+def test_lookahead_kernel_writes_nothing_but_its_notes(periodic):
     # Run directly for every bucket of the calendar (so also for lists whose disks sit
-    # at the edges of a walled box), the lookahead leaves every array as it was.
+    # at the edges of a walled box), the lookahead leaves every array as it was, but
+    # for the stages it notes as given.
     from edmd2d._engine import loop, queue
 
     sim = ed.make_gas(800, 0.5, periodic=periodic, seed=6)
@@ -245,9 +268,61 @@ def test_lookahead_kernel_writes_nothing(periodic):
     for cur in range(int(sim._qs[queue.CUR]), int(sim._qs[queue.CUR]) + mask + 2):
         # (As the list just moved into the heap, none, or any list: hints all.)
         for first in (-1, int(sim._qhead[(cur + 7) & mask])):
-            loop._lookahead(cur, first, *arrays, mask)
-    assert all(_same_bits(a, b) for a, b in zip(arrays, before))
+            loop._lookahead(cur - 1, cur, first, *arrays, mask)
+    assert _assert_only_stages_noted(arrays, before) > 100
     assert (sim._qhead >= 0).sum() > 100  # the lists it walked were not empty
+
+
+def test_a_new_event_starts_with_no_stage_noted():
+    # Stages are given only to events at most loop._AHEAD buckets ahead; an event
+    # predicted afresh starts with none, so every event queued further ahead has none,
+    # whatever stages the disk's earlier events had.
+    from edmd2d._engine import loop, queue
+
+    sim = ed.make_gas(3000, 0.5, seed=9)
+    sim._qs[queue.LOOKAHEAD] = 1
+    far = near = 0
+    for _ in range(5):
+        sim.advance(collisions=4000)
+        cur, mask = int(sim._qs[queue.CUR]), int(sim._qs[queue.MASK])
+        for d in range(1, mask + 2):
+            h = sim._qhead[(cur + d) & mask] if d <= mask else sim._qhead[mask + 1]
+            while h >= 0:
+                staged = sim._E[h, loop.STAGED]
+                if d > loop._AHEAD:
+                    assert staged == 0, (d, staged)
+                    far += 1
+                elif d <= 2:
+                    near += staged != 0
+                h = sim._E[h, queue.NEXT]
+    assert far > 5 * 2000 and near > 5 * 3
+    # A re-sort moves the rows, and with them whatever the lookahead had fetched.
+    sim._reorder()
+    assert (sim._E[:, loop.STAGED] == 0).all()
+
+
+def test_heap_staging_gives_each_waiting_event_its_next_stage():
+    # Between the events of a bucket, every event in its heap but the root gets the
+    # first stage it lacks, one per call, and nothing else changes.
+    from edmd2d._engine import loop
+
+    sim = ed.make_gas(800, 0.5, seed=6)
+    sim.advance(collisions=2000)
+    arrays = (sim._S, sim._E, sim._qt, sim._tc, sim._gi, sim._head)
+    disks = np.arange(0, 800, 80)  # ten disks (stand-ins for a heap)
+    hv = disks.astype(np.int32)
+    given = [0, 0, 0b0010, 0b0110, 0b1110, 0b1010, 0, 0, 0, 0]
+    # slot 0: the root, left alone; slot 5 lacks stage 2 only; slots 8, 9 are past
+    # the slots looked at (loop._HEAP_STAGED).
+    assert loop._HEAP_STAGED == 8
+    sim._E[disks, loop.STAGED] = given
+    before = [a.copy() for a in arrays]
+    loop._stage_heap(*arrays, hv, 10)
+    after = sim._E[disks, loop.STAGED].tolist()
+    assert after == [0, 0b0010, 0b0110, 0b1110, 0b1110, 0b1110, 0b0010, 0b0010, 0, 0]
+    _assert_only_stages_noted(arrays, before)
+    loop._stage_heap(*arrays, hv, 3)  # (a heap of three: slots 1 and 2 only)
+    assert sim._E[disks, loop.STAGED].tolist()[:4] == [0, 0b0110, 0b1110, 0b1110]
 
 
 def test_lookahead_is_on_for_large_systems_only():
@@ -277,29 +352,46 @@ import edmd2d as ed
 from edmd2d._engine import loop, queue
 
 calls = []
-inner = loop._lookahead
+inner = loop._lookahead_bucket
 def counting(cur, *args):
     calls.append(int(cur))
     return inner(cur, *args)
-loop._lookahead = counting  # (as plain Python, run() looks it up at each call)
+loop._lookahead_bucket = counting  # (as plain Python, looked up at each call)
+inner_top = queue.top
+def top(qt, ql, hv, qhead, qs, qf):
+    before = int(qs[queue.CUR])
+    i = inner_top(qt, ql, hv, qhead, qs, qf)
+    after = int(qs[queue.CUR])
+    # The buckets the lookahead should run for: each one reached or stepped over
+    # (when the calendar moved on by up to loop._AHEAD buckets), else the new one.
+    if not expected:
+        expected.append(after)
+    elif after != before:
+        gap = after - before
+        expected.extend(range(before + 1, after + 1) if 0 < gap <= loop._AHEAD else [after])
+        skips[0] += 1 < gap <= loop._AHEAD
+    return i
+queue.top = top
 
 out = []
 for flag in (1, 0):
     sim = ed.make_gas(150, 0.5, seed=8)
     sim._qs[queue.LOOKAHEAD] = flag
     calls.clear()
+    expected = []
+    skips = [0]
     sim.advance(collisions=300)
-    repeats = sum(a == b for a, b in zip(calls, calls[1:]))
-    out.append((len(calls), repeats))
+    out.append((len(calls), calls == expected, skips[0]))
 print(out)
 """
 
 
-def test_event_loop_runs_the_lookahead_once_per_bucket_reached():
+def test_event_loop_runs_the_lookahead_for_each_bucket_reached_or_stepped_over():
     # Prefetching has no observable effect, so the bit-identity tests above would also
     # pass if the loop never called the lookahead.  As plain Python (numba's JIT off,
     # in a child process) the call can be counted: on, once per bucket the calendar
-    # reaches (consecutive calls never repeat a bucket); off, never.
+    # reaches or steps over (consecutive calls run for consecutive buckets, but where
+    # the calendar restarts); off, never.
     import ast
     import os
     import subprocess
@@ -308,6 +400,8 @@ def test_event_loop_runs_the_lookahead_once_per_bucket_reached():
     env = dict(os.environ, NUMBA_DISABLE_JIT="1")
     res = subprocess.run([sys.executable, "-c", _COUNT_LOOKAHEAD_CALLS], env=env,
                          capture_output=True, text=True, timeout=600, check=True)
-    (n_on, repeats_on), (n_off, _) = ast.literal_eval(res.stdout.strip().splitlines()[-1])
-    assert n_on > 50 and repeats_on == 0
+    (n_on, as_expected, skips), (n_off, _, _) = ast.literal_eval(
+        res.stdout.strip().splitlines()[-1])
+    assert n_on > 50 and as_expected
+    assert skips > 10  # (the calendar did step over empty buckets)
     assert n_off == 0

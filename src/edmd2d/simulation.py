@@ -372,6 +372,7 @@ class Simulation:
         queue[4][_queue.LOOKAHEAD] = self._qs[_queue.LOOKAHEAD]  # (forced on in tests)
         table = queue[1]
         table[:] = self._E[perm]
+        table[:, _loop.STAGED] = 0  # (what the lookahead fetched has moved)
         disk = table[:, _loop.KIND] & _loop._KIND_MASK == _loop.DISK
         table[disk, _loop.PARTNER] = inv[table[disk, _loop.PARTNER]]
         _, nxt, prv, times, _, _ = _loop.row_views(state, table)

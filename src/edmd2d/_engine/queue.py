@@ -344,14 +344,16 @@ def top(qt, ql, hv, qhead, qs, qf):
         if qs[NLIST] == 0:
             if qs[NOVER] == 0:
                 return np.int64(-1)
-            _scan_overflow(True, qt, ql, hv, qhead, qs, qf)
+            # (``restart`` as a value known only at run time, True here and False
+            # below: a literal would compile the function once for each.)
+            _scan_overflow(qs[NLIST] == 0, qt, ql, hv, qhead, qs, qf)
             qs[FIRST] = -1
             continue
         cur = qs[CUR] + 1
         qs[CUR] = cur
         qs[ADVANCED] += 1
         if cur >= qs[BOUNDARY]:
-            _scan_overflow(False, qt, ql, hv, qhead, qs, qf)
+            _scan_overflow(qs[NLIST] == 0, qt, ql, hv, qhead, qs, qf)
         lst = cur & qs[MASK]
         i = qhead[lst]
         qhead[lst] = -1

@@ -120,15 +120,25 @@ def test_a_copy_runs_like_the_original(how):
 def test_unpickling_state_from_before_the_queue_kept_first():
     # A pickle whose queue state lacks the last slot (qs[FIRST], added later) loads and
     # runs like the original; any other length is refused instead of read past its end.
-    from edmd2d._engine import queue
+    # Its lookahead stage notes (column STAGED, -1 before the notes existed) load as
+    # "none given"; the notes of a current pickle are kept.
+    from edmd2d._engine import loop, queue
 
     sim = ed.make_gas(600, 0.5, seed=4)
+    sim._qs[queue.LOOKAHEAD] = 1
     sim.advance(collisions=500)
     state = pickle.loads(pickle.dumps(sim)).__getstate__()  # (arrays of its own)
-    old = dict(state, _qs=state["_qs"][:queue.FIRST].copy())
+    staged = state["_E"][:, loop.STAGED].copy()
+    assert (staged != 0).any() and (staged & ~loop.STAGE_BITS == 0).all()
+    current = ed.Simulation.__new__(ed.Simulation)
+    current.__setstate__(state)
+    assert np.array_equal(current._E[:, loop.STAGED], staged)
+    old = dict(state, _qs=state["_qs"][:queue.FIRST].copy(), _E=state["_E"].copy())
+    old["_E"][:, loop.STAGED] = -1
     twin = ed.Simulation.__new__(ed.Simulation)
     twin.__setstate__(old)
     assert len(twin._qs) == queue.N_QS and twin._qs[queue.FIRST] == -1
+    assert (twin._E[:, loop.STAGED] == 0).all()
     sim.advance(collisions=2000)
     twin.advance(collisions=2000)
     assert np.array_equal(sim.positions, twin.positions) and sim.counts == twin.counts
@@ -357,6 +367,11 @@ def counting(cur, *args):
     calls.append(int(cur))
     return inner(cur, *args)
 loop._lookahead_bucket = counting  # (as plain Python, looked up at each call)
+inner_heap = loop._stage_heap
+def counting_heap(*args):
+    heap_calls[0] += 1
+    return inner_heap(*args)
+loop._stage_heap = counting_heap
 inner_top = queue.top
 def top(qt, ql, hv, qhead, qs, qf):
     before = int(qs[queue.CUR])
@@ -366,7 +381,9 @@ def top(qt, ql, hv, qhead, qs, qf):
     # (when the calendar moved on by up to loop._AHEAD buckets), else the new one.
     if not expected:
         expected.append(after)
-    elif after != before:
+    elif after == before:
+        stays[0] += 1  # (the heap staging's turn)
+    else:
         gap = after - before
         expected.extend(range(before + 1, after + 1) if 0 < gap <= loop._AHEAD else [after])
         skips[0] += 1 < gap <= loop._AHEAD
@@ -380,8 +397,10 @@ for flag in (1, 0):
     calls.clear()
     expected = []
     skips = [0]
+    stays = [0]
+    heap_calls = [0]
     sim.advance(collisions=300)
-    out.append((len(calls), calls == expected, skips[0]))
+    out.append((len(calls), calls == expected, skips[0], heap_calls[0], stays[0]))
 print(out)
 """
 
@@ -391,7 +410,8 @@ def test_event_loop_runs_the_lookahead_for_each_bucket_reached_or_stepped_over()
     # pass if the loop never called the lookahead.  As plain Python (numba's JIT off,
     # in a child process) the call can be counted: on, once per bucket the calendar
     # reaches or steps over (consecutive calls run for consecutive buckets, but where
-    # the calendar restarts); off, never.
+    # the calendar restarts), and the heap staging once per event that finds the
+    # calendar on the same bucket; off, never.
     import ast
     import os
     import subprocess
@@ -400,8 +420,9 @@ def test_event_loop_runs_the_lookahead_for_each_bucket_reached_or_stepped_over()
     env = dict(os.environ, NUMBA_DISABLE_JIT="1")
     res = subprocess.run([sys.executable, "-c", _COUNT_LOOKAHEAD_CALLS], env=env,
                          capture_output=True, text=True, timeout=600, check=True)
-    (n_on, as_expected, skips), (n_off, _, _) = ast.literal_eval(
-        res.stdout.strip().splitlines()[-1])
+    (n_on, as_expected, skips, heap_on, stays), (n_off, _, _, heap_off, _) = (
+        ast.literal_eval(res.stdout.strip().splitlines()[-1]))
     assert n_on > 50 and as_expected
     assert skips > 10  # (the calendar did step over empty buckets)
-    assert n_off == 0
+    assert heap_on == stays > 50
+    assert n_off == 0 and heap_off == 0

@@ -330,6 +330,10 @@ class Simulation:
             table = aligned_rows(*state[name].shape, state[name].dtype)
             table[:] = state.pop(name)
             tables.append(table)
+        # Saved before the lookahead noted its stages, the column held -1 ("all given"):
+        # none given, as after a prediction.
+        staged = tables[1][:, _loop.STAGED]
+        staged[staged & ~_loop.STAGE_BITS != 0] = 0
         state.update(self._tables(*tables, *(state.pop(name) for name in
                                              ("_hv", "_qhead", "_qs", "_qf"))))
         vars(self).update(state)

@@ -75,6 +75,7 @@ S_STAMP, S_NEXT, S_PREV = 12, 13, 14
 # E.view(np.float64) (QT belongs to the queue)
 CELL, KIND, PARTNER, AUX, PSTAMP = 0, 1, 2, 3, 4
 STAGED = 15
+STAGE_BITS = 0b1110  # the bits of STAGED in use: stages 1-3 (see _stage)
 E_TC, E_INVM = 5, 6
 _KIND_MASK = 15  # low bits of E[:, KIND]; the bits above hold the crossing direction
 
@@ -356,28 +357,29 @@ def _exposed(direction):
 def _lookahead(opened, cur, first, S, E, qt, tc, gi, head, qhead, mask):
     """Prefetch what the coming events will load (:func:`_lookahead_bucket`), as the
     calendar reaches bucket ``cur`` (its list starting at ``first``, ``qs[FIRST]``)
-    after ``opened``, the last bucket this ran for; returns ``cur``.  (A hint only:
-    no effect on results.)
+    after ``opened``, the last bucket this ran for (-1: none).  (A hint only: no effect
+    on results.)
 
     The buckets in between were empty (the calendar stepped over them), but the lists
     ahead of each are due a stage from each: run for ``cur`` alone, 13 % of the lists
     (a bucket holds two events on average, and is empty with probability ``exp(-2)``)
-    would each lose one.  After a jump backwards (the calendar restarted) or of more
-    than ``_AHEAD`` buckets only ``cur`` is run for.
+    would each lose one.  Only ``cur`` is run for after a jump of more than ``_AHEAD``
+    buckets, or when ``cur`` is not past ``opened`` (the calendar restarted at bucket
+    0; a restart that lands past ``opened`` is taken for steps, which costs at most a
+    few useless prefetches).
     """
-    if opened < cur - _AHEAD or opened >= cur:
+    if opened < 0 or opened < cur - _AHEAD or opened >= cur:
         opened = cur - 1
     while opened < cur:
         opened += 1
-        _lookahead_bucket(opened, first if opened == cur else -1, S, E, qt, tc, gi,
-                          head, qhead, mask)
-    return cur
+        _lookahead_bucket(opened, cur, first, S, E, qt, tc, gi, head, qhead, mask)
 
 
 @njit(inline="always")
-def _lookahead_bucket(cur, first, S, E, qt, tc, gi, head, qhead, mask):
-    """Prefetch, for the calendar at bucket ``cur``, what the events of that bucket and
-    the next ``_AHEAD`` will load, a stage at a time.
+def _lookahead_bucket(b, cur, first, S, E, qt, tc, gi, head, qhead, mask):
+    """Prefetch, for the calendar at bucket ``b`` (``cur``, or a bucket before it that
+    it stepped over), what the events of that bucket and the next ``_AHEAD`` will
+    load, a stage at a time.
 
     At large N the rows of an event's disk, partner and neighbours are cache misses met
     one after another: a list is walked link by link, the partner and the cell are only
@@ -389,11 +391,12 @@ def _lookahead_bucket(cur, first, S, E, qt, tc, gi, head, qhead, mask):
     ``k``; a hint that misses costs a miss.)  When the calendar steps over empty buckets
     this runs for each of them too (:func:`_lookahead`), so that no stage is skipped.
 
-    ``d = 0`` is the bucket just reached, whose list ``top`` has moved into the heap:
-    it is walked from ``first`` (-1: none).  There the third to sixth
-    disks of the list get one stage more (the third its last), which a list of 2-3
-    events (the calendar's target) would otherwise never give them: +3-6 % at
-    N = 10^6, where the scan had waited on their neighbours' rows.  Whatever stages
+    Bucket ``cur`` is the one just reached, whose list ``top`` has moved into the heap:
+    it is walked from ``first`` (-1: none), also from a bucket stepped over.  At
+    ``d = 0`` the third to sixth disks of that list get one stage more (the third its
+    last), which a list of 2-3 events (the calendar's target) would otherwise never
+    give them: +3-6 % at N = 10^6, where the scan had waited on their neighbours'
+    rows.  Whatever stages
     the later disks of a long list still lack, :func:`_stage_heap` gives them while
     the bucket's earlier events are processed.
 
@@ -405,7 +408,10 @@ def _lookahead_bucket(cur, first, S, E, qt, tc, gi, head, qhead, mask):
     against wrapping at the grid's edges: both cost more than they saved.)
     """
     for d in range(_AHEAD, -1, -1):
-        h = qhead[(cur + d) & mask] if d > 0 else first
+        if b + d == cur:
+            h = first
+        else:  # (a later bucket's list, or none: a bucket stepped over is empty)
+            h = qhead[(b + d) & mask] if d > 0 else -1
         for k in range(_AHEAD - d + 1):
             if h < 0:
                 break
@@ -548,8 +554,9 @@ def run(t_end, max_collisions, max_events,
                 break
             if qs[queue.LOOKAHEAD] != 0:
                 if qs[queue.CUR] != opened:
-                    opened = _lookahead(opened, qs[queue.CUR], qs[queue.FIRST], S, E, qt,
-                                        tc, gi, head, qhead, qs[queue.MASK])
+                    _lookahead(opened, qs[queue.CUR], qs[queue.FIRST], S, E, qt, tc, gi,
+                               head, qhead, qs[queue.MASK])
+                    opened = qs[queue.CUR]
                 else:
                     _stage_heap(S, E, qt, tc, gi, head, hv, qs[queue.NHEAP])
             t = qt[i]

@@ -396,9 +396,8 @@ def _lookahead_bucket(b, cur, first, S, E, qt, tc, gi, head, qhead, mask):
     ``d = 0`` the third to sixth disks of that list get one stage more (the third its
     last), which a list of 2-3 events (the calendar's target) would otherwise never
     give them: +3-6 % at N = 10^6, where the scan had waited on their neighbours'
-    rows.  Whatever stages
-    the later disks of a long list still lack, :func:`_stage_heap` gives them while
-    the bucket's earlier events are processed.
+    rows.  Whatever stages the later disks of a long list still lack,
+    :func:`_stage_heap` gives them while the bucket's earlier events are processed.
 
     Stage 0, the disk's bookkeeping row (which holds its list link and queue time),
     is requested here; stages 1-3 by :func:`_stage`.  (Stages 4 and 5, reached by the

@@ -1,0 +1,150 @@
+"""Check that two (or more) versions of edmd2d give bit-identical results.
+
+A change to the engine that is meant to keep its physics (a restructuring, a speed-up)
+must leave every event and every number exactly as it was.  This script runs the same
+systems in each git revision (exported like ``ab.py`` does, each in a fresh process
+with its own numba cache) and compares, bit for bit, the event log (time, kind, disks),
+the final positions, velocities, unwrapped positions, counts and accumulated impulses:
+
+    python benchmarks/identical.py HEAD~1 HEAD
+
+The systems: 48 small random systems of every box kind (periodic, walled, mixed) with
+and without wall segments and a fixed peg, run to t = 3; a 2 000-disk gas with the
+lookahead forced on (it is a hint and must change nothing); a walled gas in a polygon
+container; and a 10^4-disk periodic gas run for 20 collisions per disk (which includes
+a Z-order re-sort of the rows).  Exit status 1 if any digest differs.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from ab import export  # noqa: E402
+
+_CHILD = r"""
+import dataclasses, hashlib, json
+import numpy as np
+import edmd2d as ed
+
+def random_system(rng, n, box, walls):
+    pos, rad = [], []
+    for _ in range(20000):
+        if len(pos) == n:
+            break
+        r = rng.uniform(0.3, 0.6)
+        p = rng.uniform([0.0, 0.0], [box.width, box.height])
+        if any(not box.periodic[a] and not (r < p[a] < box.size[a] - r) for a in range(2)):
+            continue
+        if pos:
+            d = np.array(pos) - p
+            for a in range(2):
+                if box.periodic[a]:
+                    d[:, a] -= box.size[a] * np.round(d[:, a] / box.size[a])
+            if (np.hypot(*d.T) < np.array(rad) + r).any():
+                continue
+        ok = True
+        for w in walls:
+            a, b = np.array(w.start), np.array(w.end)
+            u = b - a
+            s = np.clip((p - a) @ u / (u @ u), 0.0, 1.0)
+            if np.hypot(*(p - a - s * u)) < r:
+                ok = False
+        if ok:
+            pos.append(p)
+            rad.append(r)
+    pos = np.array(pos)
+    return pos, rng.normal(size=(len(pos), 2)), np.array(rad), rng.uniform(0.5, 2.0, len(pos))
+
+def digest(sim):
+    h = hashlib.sha256()
+    for ev in sim._recorded_events():
+        h.update(repr(ev).encode())
+    for arr in (sim.positions, sim.velocities, sim.unwrapped_positions,
+                np.array(dataclasses.astuple(sim.counts))):
+        h.update(np.ascontiguousarray(arr).tobytes())
+    acc = sim._accumulators()
+    for key in ("virial", "virial_xx", "virial_yy", "box_impulse", "segment_impulse"):
+        h.update(np.asarray(acc[key], np.float64).tobytes())
+    h.update(repr(sim.time).encode())
+    return h.hexdigest()
+
+out = {}
+kinds = [(True, True), (False, False), (True, False), (False, True)]
+for seed in range(48):
+    rng = np.random.default_rng(seed)
+    box = ed.Box(rng.uniform(2.5, 7.0), rng.uniform(2.5, 7.0), periodic=kinds[seed % 4])
+    w, hgt = box.width, box.height
+    walls = [[], [ed.Wall((0.5 * w, 0.25 * hgt), (0.5 * w, 0.75 * hgt))],
+             ed.Wall.polygon([(0.2 * w, 0.2 * hgt), (0.45 * w, 0.25 * hgt),
+                              (0.3 * w, 0.45 * hgt)])][seed % 3]
+    pos, vel, rad, mass = random_system(rng, int(rng.integers(2, 10)), box, walls)
+    if seed % 5 == 0 and len(pos) > 2:
+        mass[0] = np.inf
+        vel[0] = 0.0
+    sim = ed.Simulation(pos, vel, rad, mass, box=box, walls=walls)
+    sim._record_events(100_000)
+    sim.advance(until=3.0)
+    out[f"small-{seed}"] = digest(sim)
+
+sim = ed.make_gas(2000, 0.5, seed=3)
+sim._qs[8] = 1  # the queue's LOOKAHEAD flag: forced on for a small system
+sim._record_events(200_000)
+sim.advance(collisions=40_000)
+out["lookahead-2000"] = digest(sim)
+
+box = ed.Box(30.0, 30.0, periodic=False)
+walls = ed.Wall.polygon([(1.0, 1.0), (29.0, 2.0), (28.0, 29.0), (2.0, 28.0)])
+g = ed.make_gas(120, 0.3, periodic=False, seed=4)
+pos = g.positions + [0.5 * (30.0 - g.box.width), 0.5 * (30.0 - g.box.height)]
+sim = ed.Simulation(pos, g.velocities, g.radii, box=box, walls=walls)
+sim._record_events(200_000)
+sim.advance(collisions=30_000)
+out["polygon-120"] = digest(sim)
+
+sim = ed.make_gas(10_000, 0.5, seed=1)
+sim._record_events(300_000)
+sim.advance(collisions=200_000)
+out["gas-10000"] = digest(sim)
+print(json.dumps(out))
+"""
+
+
+def digests(tree: Path) -> dict:
+    """Digest of each system's results, run by the edmd2d tree ``tree``."""
+    env = dict(os.environ, PYTHONPATH=str(tree / "src"), NUMBA_CACHE_DIR=str(tree / "nc"))
+    proc = subprocess.run([sys.executable, "-c", _CHILD], env=env, capture_output=True,
+                          text=True)
+    if proc.returncode != 0:
+        raise RuntimeError(f"the systems failed to run in {tree}:\n{proc.stderr[-3000:]}")
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("revisions", nargs="+", help="git revisions to compare (two or more)")
+    args = ap.parse_args(argv)
+    if len(args.revisions) < 2:
+        ap.error("give at least two revisions")
+    with tempfile.TemporaryDirectory() as tmp:
+        results = {rev: digests(export(rev, Path(tmp))) for rev in args.revisions}
+    first, *others = args.revisions
+    bad = 0
+    for name in results[first]:
+        values = {rev: results[rev].get(name) for rev in args.revisions}
+        same = len(set(values.values())) == 1
+        bad += not same
+        print(f"{name:>16}  {'identical' if same else 'DIFFERENT'}  {values[first][:16]}")
+    print(f"{len(results[first]) - bad} of {len(results[first])} systems bit-identical "
+          f"across {', '.join(args.revisions)}")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -122,23 +122,23 @@ def test_unpickling_state_from_before_the_queue_kept_first():
     # runs like the original; any other length is refused instead of read past its end.
     # Its lookahead stage notes (column STAGED, -1 before the notes existed) load as
     # "none given"; the notes of a current pickle are kept.
-    from edmd2d._engine import loop, queue
+    from edmd2d._engine import layout, queue
 
     sim = ed.make_gas(600, 0.5, seed=4)
     sim._qs[queue.LOOKAHEAD] = 1
     sim.advance(collisions=500)
     state = pickle.loads(pickle.dumps(sim)).__getstate__()  # (arrays of its own)
-    staged = state["_E"][:, loop.STAGED].copy()
-    assert (staged != 0).any() and (staged & ~loop.STAGE_BITS == 0).all()
+    staged = state["_E"][:, layout.STAGED].copy()
+    assert (staged != 0).any() and (staged & ~layout.STAGE_BITS == 0).all()
     current = ed.Simulation.__new__(ed.Simulation)
     current.__setstate__(state)
-    assert np.array_equal(current._E[:, loop.STAGED], staged)
+    assert np.array_equal(current._E[:, layout.STAGED], staged)
     old = dict(state, _qs=state["_qs"][:queue.FIRST].copy(), _E=state["_E"].copy())
-    old["_E"][:, loop.STAGED] = -1
+    old["_E"][:, layout.STAGED] = -1
     twin = ed.Simulation.__new__(ed.Simulation)
     twin.__setstate__(old)
     assert len(twin._qs) == queue.N_QS and twin._qs[queue.FIRST] == -1
-    assert (twin._E[:, loop.STAGED] == 0).all()
+    assert (twin._E[:, layout.STAGED] == 0).all()
     sim.advance(collisions=2000)
     twin.advance(collisions=2000)
     assert np.array_equal(sim.positions, twin.positions) and sim.counts == twin.counts
@@ -221,13 +221,13 @@ def _same_bits(a, b):
 def _assert_identical(runs):
     """The same events, counts and rows, but for the lookahead's notes of the stages
     given (E[:, STAGED]), which it must have written only when on."""
-    from edmd2d._engine import loop
+    from edmd2d._engine import layout
 
     (ev_on, s_on, e_on, c_on), (ev_off, s_off, e_off, c_off) = runs
     assert ev_on == ev_off
-    assert (e_off[:, loop.STAGED] == 0).all() and (e_on[:, loop.STAGED] != 0).any()
+    assert (e_off[:, layout.STAGED] == 0).all() and (e_on[:, layout.STAGED] != 0).any()
     e_on, e_off = e_on.copy(), e_off.copy()
-    e_on[:, loop.STAGED] = e_off[:, loop.STAGED] = 0
+    e_on[:, layout.STAGED] = e_off[:, layout.STAGED] = 0
     assert _same_bits(s_on, s_off) and _same_bits(e_on, e_off)
     assert c_on == c_off
 
@@ -250,14 +250,14 @@ def test_lookahead_changes_no_event_and_no_state(periodic):
 
 def _assert_only_stages_noted(arrays, before):
     """Every array as it was, but for stage bits (1-3) added to E[:, STAGED]."""
-    from edmd2d._engine import loop
+    from edmd2d._engine import layout
 
     e_now, e_then = arrays[1], before[1]
-    now, then = e_now[:, loop.STAGED], e_then[:, loop.STAGED]
+    now, then = e_now[:, layout.STAGED], e_then[:, layout.STAGED]
     assert (now & then == then).all()  # (bits are only added,)
     assert (now & ~0b1110 == then & ~0b1110).all()  # (and only those of stages 1-3)
     e_now, e_then = e_now.copy(), e_then.copy()
-    e_now[:, loop.STAGED] = e_then[:, loop.STAGED] = 0
+    e_now[:, layout.STAGED] = e_then[:, layout.STAGED] = 0
     assert _same_bits(e_now, e_then)
     assert all(_same_bits(a, b) for i, (a, b) in enumerate(zip(arrays, before)) if i != 1)
     return int((now != then).sum())
@@ -268,7 +268,7 @@ def test_lookahead_kernel_writes_nothing_but_its_notes(periodic):
     # Run directly for every bucket of the calendar (so also for lists whose disks sit
     # at the edges of a walled box), the lookahead leaves every array as it was, but
     # for the stages it notes as given.
-    from edmd2d._engine import loop, queue
+    from edmd2d._engine import lookahead, queue
 
     sim = ed.make_gas(800, 0.5, periodic=periodic, seed=6)
     sim.advance(collisions=2000)
@@ -278,16 +278,16 @@ def test_lookahead_kernel_writes_nothing_but_its_notes(periodic):
     for cur in range(int(sim._qs[queue.CUR]), int(sim._qs[queue.CUR]) + mask + 2):
         # (As the list just moved into the heap, none, or any list: hints all.)
         for first in (-1, int(sim._qhead[(cur + 7) & mask])):
-            loop._lookahead(cur - 1, cur, first, *arrays, mask)
+            lookahead.lookahead(cur - 1, cur, first, *arrays, mask)
     assert _assert_only_stages_noted(arrays, before) > 100
     assert (sim._qhead >= 0).sum() > 100  # the lists it walked were not empty
 
 
 def test_a_new_event_starts_with_no_stage_noted():
-    # Stages are given only to events at most loop._AHEAD buckets ahead; an event
+    # Stages are given only to events at most lookahead._AHEAD buckets ahead; an event
     # predicted afresh starts with none, so every event queued further ahead has none,
     # whatever stages the disk's earlier events had.
-    from edmd2d._engine import loop, queue
+    from edmd2d._engine import layout, lookahead, queue
 
     sim = ed.make_gas(3000, 0.5, seed=9)
     sim._qs[queue.LOOKAHEAD] = 1
@@ -298,8 +298,8 @@ def test_a_new_event_starts_with_no_stage_noted():
         for d in range(1, mask + 2):
             h = sim._qhead[(cur + d) & mask] if d <= mask else sim._qhead[mask + 1]
             while h >= 0:
-                staged = sim._E[h, loop.STAGED]
-                if d > loop._AHEAD:
+                staged = sim._E[h, layout.STAGED]
+                if d > lookahead._AHEAD:
                     assert staged == 0, (d, staged)
                     far += 1
                 elif d <= 2:
@@ -308,13 +308,13 @@ def test_a_new_event_starts_with_no_stage_noted():
     assert far > 5 * 2000 and near > 5 * 3
     # A re-sort moves the rows, and with them whatever the lookahead had fetched.
     sim._reorder()
-    assert (sim._E[:, loop.STAGED] == 0).all()
+    assert (sim._E[:, layout.STAGED] == 0).all()
 
 
 def test_heap_staging_gives_each_waiting_event_its_next_stage():
     # Between the events of a bucket, every event in its heap but the root gets the
     # first stage it lacks, one per call, and nothing else changes.
-    from edmd2d._engine import loop
+    from edmd2d._engine import layout, lookahead
 
     sim = ed.make_gas(800, 0.5, seed=6)
     sim.advance(collisions=2000)
@@ -323,16 +323,16 @@ def test_heap_staging_gives_each_waiting_event_its_next_stage():
     hv = disks.astype(np.int32)
     given = [0, 0, 0b0010, 0b0110, 0b1110, 0b1010, 0, 0, 0, 0]
     # slot 0: the root, left alone; slot 5 lacks stage 2 only; slots 8, 9 are past
-    # the slots looked at (loop._HEAP_STAGED).
-    assert loop._HEAP_STAGED == 8
-    sim._E[disks, loop.STAGED] = given
+    # the slots looked at (lookahead._HEAP_STAGED).
+    assert lookahead._HEAP_STAGED == 8
+    sim._E[disks, layout.STAGED] = given
     before = [a.copy() for a in arrays]
-    loop._stage_heap(*arrays, hv, 10)
-    after = sim._E[disks, loop.STAGED].tolist()
+    lookahead.stage_heap(*arrays, hv, 10)
+    after = sim._E[disks, layout.STAGED].tolist()
     assert after == [0, 0b0010, 0b0110, 0b1110, 0b1110, 0b1110, 0b0010, 0b0010, 0, 0]
     _assert_only_stages_noted(arrays, before)
-    loop._stage_heap(*arrays, hv, 3)  # (a heap of three: slots 1 and 2 only)
-    assert sim._E[disks, loop.STAGED].tolist()[:4] == [0, 0b0110, 0b1110, 0b1110]
+    lookahead.stage_heap(*arrays, hv, 3)  # (a heap of three: slots 1 and 2 only)
+    assert sim._E[disks, layout.STAGED].tolist()[:4] == [0, 0b0110, 0b1110, 0b1110]
 
 
 def test_lookahead_is_on_for_large_systems_only():
@@ -359,34 +359,34 @@ def test_lookahead_on_by_default_at_its_size_changes_nothing():
 
 _COUNT_LOOKAHEAD_CALLS = r"""
 import edmd2d as ed
-from edmd2d._engine import loop, queue
+from edmd2d._engine import lookahead, queue
 
 calls = []
-inner = loop._lookahead_bucket
+inner = lookahead._lookahead_bucket
 def counting(cur, *args):
     calls.append(int(cur))
     return inner(cur, *args)
-loop._lookahead_bucket = counting  # (as plain Python, looked up at each call)
-inner_heap = loop._stage_heap
+lookahead._lookahead_bucket = counting  # (as plain Python, looked up at each call)
+inner_heap = lookahead.stage_heap
 def counting_heap(*args):
     heap_calls[0] += 1
     return inner_heap(*args)
-loop._stage_heap = counting_heap
+lookahead.stage_heap = counting_heap
 inner_top = queue.top
 def top(qt, ql, hv, qhead, qs, qf):
     before = int(qs[queue.CUR])
     i = inner_top(qt, ql, hv, qhead, qs, qf)
     after = int(qs[queue.CUR])
     # The buckets the lookahead should run for: each one reached or stepped over
-    # (when the calendar moved on by up to loop._AHEAD buckets), else the new one.
+    # (when the calendar moved on by up to lookahead._AHEAD buckets), else the new one.
     if not expected:
         expected.append(after)
     elif after == before:
         stays[0] += 1  # (the heap staging's turn)
     else:
         gap = after - before
-        expected.extend(range(before + 1, after + 1) if 0 < gap <= loop._AHEAD else [after])
-        skips[0] += 1 < gap <= loop._AHEAD
+        expected.extend(range(before + 1, after + 1) if 0 < gap <= lookahead._AHEAD else [after])
+        skips[0] += 1 < gap <= lookahead._AHEAD
     return i
 queue.top = top
 

@@ -143,7 +143,7 @@ def test_very_fast_disks_in_a_gas_do_not_tunnel():
 def test_interrupt_as_the_engine_returns_keeps_the_clock_consistent(monkeypatch):
     # Ctrl-C lands in Python right after the compiled loop returns.  The clock must
     # follow the processed events, or positions would be extrapolated backwards.
-    from edmd2d._engine import loop
+    from edmd2d._engine import layout, loop
 
     sim = ed.make_gas(2000, 0.5, seed=31)
     real_run = loop.run
@@ -157,7 +157,7 @@ def test_interrupt_as_the_engine_returns_keeps_the_clock_consistent(monkeypatch)
         sim.advance(collisions=50_000)
     monkeypatch.setattr(loop, "run", real_run)
     assert 0 < sim.counts.collisions <= 50_000  # the first engine call ran, then Ctrl-C
-    assert sim.time == pytest.approx(sim._S[:, loop.T].max(), abs=0)
+    assert sim.time == pytest.approx(sim._S[:, layout.T].max(), abs=0)
     assert_no_overlap(sim)
     sim.advance(until=sim.time + 1.0)
     assert_no_overlap(sim)

@@ -196,22 +196,22 @@ def test_engine_queue_consistent_during_runs(n):
 def test_queue_leaves_the_loops_columns_alone():
     # The queue shares its rows with the event loop: it may write only its own links
     # and times, whatever it does.
-    from edmd2d._engine import loop
+    from edmd2d._engine import layout
 
     n = 64
     arrays = q.allocate(n)
     qt, ql = arrays[0], arrays[1]
     floats = ql.view(np.float64)
     ql[:, :q.NEXT] = 12345
-    floats[:, loop.E_TC] = 7.5
-    floats[:, loop.E_INVM] = 0.25
+    floats[:, layout.E_TC] = 7.5
+    floats[:, layout.E_INVM] = 0.25
     rng = np.random.default_rng(1)
     q.build(0.0, rng.exponential(1.0, n), *arrays)
     for _ in range(2000):
         i = q.top(*arrays)
         q.set_time(i, qt[i] + rng.exponential(1.0), *arrays)
     assert (ql[:, :q.NEXT] == 12345).all()
-    assert (floats[:, loop.E_TC] == 7.5).all() and (floats[:, loop.E_INVM] == 0.25).all()
+    assert (floats[:, layout.E_TC] == 7.5).all() and (floats[:, layout.E_INVM] == 0.25).all()
 
 
 def test_first_names_the_list_just_moved_into_the_heap():

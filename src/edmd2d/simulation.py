@@ -10,7 +10,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._engine import aligned_rows
+from ._engine import flight as _flight
 from ._engine import grid as _grid
+from ._engine import layout as _layout
 from ._engine import loop as _loop
 from ._engine import overlap as _overlap
 from ._engine import queue as _queue
@@ -34,8 +36,7 @@ _CHUNK_EVENTS = 1 << 22
 _REORDER_MIN_DISKS = 1024
 _REORDER_EVENTS_PER_DISK = 20
 
-_KIND_NAMES = {_loop.DISK: "disk", _loop.SEGMENT: "wall", _loop.BOX: "box"}
-_BOX_WALL_NAMES = ("x=0", "x=width", "y=0", "y=height")
+_KIND_NAMES = {_layout.DISK: "disk", _layout.SEGMENT: "wall", _layout.BOX: "box"}
 
 
 @dataclass(frozen=True)
@@ -184,13 +185,13 @@ class Simulation:
         self._gf = np.array([width, height, width / ncx, height / ncy], np.float64)
 
         # Per-disk state and bookkeeping, one 64-byte row each in S and E (see
-        # _engine/loop.py for the columns).
-        state = aligned_rows(n, _loop.N_STATE, np.float64)  # 64-byte rows, aligned
+        # _engine/layout.py for the columns).
+        state = aligned_rows(n, _layout.N_STATE, np.float64)  # 64-byte rows, aligned
         state[:] = 0.0  # (also the spare bytes: the rows are compared bit for bit)
-        state[:, _loop.X:_loop.Y + 1] = pos
-        state[:, _loop.VX:_loop.VY + 1] = vel
-        state[:, _loop.T] = float(t0)
-        state[:, _loop.R] = rad
+        state[:, _layout.X:_layout.Y + 1] = pos
+        state[:, _layout.VX:_layout.VY + 1] = vel
+        state[:, _layout.T] = float(t0)
+        state[:, _layout.R] = rad
         # E: the bookkeeping table (cell, kept candidate, queue links and time).
         queue = _queue.allocate(n)
         self._mass = mass
@@ -203,7 +204,7 @@ class Simulation:
         # than 2^31 times in a long run.
         self._image = np.zeros((n, 2), np.int64)
         self._head = np.empty(ncx * ncy, np.int32)
-        _grid.build_cells(pos, self._gi, self._gf, self._E[:, _loop.CELL], self._head,
+        _grid.build_cells(pos, self._gi, self._gf, self._E[:, _layout.CELL], self._head,
                           self._nxt, self._prv)
         if wall_list:
             self._wa = np.array([w.start for w in wall_list], np.float64)
@@ -217,8 +218,9 @@ class Simulation:
         )
         self._check_overlaps(pos, rad)
 
-        self._counts = np.zeros(_loop.N_COUNTS, np.int64)
-        self._acc = np.zeros(_loop.N_ACC, np.float64)
+        self._model = None
+        self._counts = np.zeros(_layout.N_COUNTS, np.int64)
+        self._acc = np.zeros(_layout.N_ACC, np.float64)
         self._log_t = np.zeros(0)
         self._log_e = np.zeros((0, 3), np.int64)
         self._log_n = np.zeros(1, np.int64)
@@ -267,7 +269,7 @@ class Simulation:
 
     def _check_overlaps(self, pos: np.ndarray, rad: np.ndarray) -> None:
         i, j, dist = _overlap.first_disk_overlap(
-            pos, rad, self._gi, self._gf, self._E[:, _loop.CELL], self._head, self._nxt,
+            pos, rad, self._gi, self._gf, self._E[:, _layout.CELL], self._head, self._nxt,
             _OVERLAP_TOL,
         )
         if i >= 0:
@@ -279,7 +281,7 @@ class Simulation:
         if not self._walls:
             return
         i, w, dist = _overlap.first_wall_overlap(
-            pos, rad, self._gf, self._E[:, _loop.CELL], self._wa, self._wb,
+            pos, rad, self._gf, self._E[:, _layout.CELL], self._wa, self._wb,
             self._wstart, self._wwall, self._wsx, self._wsy, _OVERLAP_TOL,
         )
         if i >= 0:
@@ -298,7 +300,7 @@ class Simulation:
         the per-disk columns that are views into ``S`` and ``E`` (the queue times among
         them): to be installed together, by one ``vars(self).update``."""
         attrs = dict(_S=state, _E=table, _hv=hv, _qhead=qhead, _qs=qs, _qf=qf)
-        attrs.update(zip(cls._ROW_VIEWS, _loop.row_views(state, table)))
+        attrs.update(zip(cls._ROW_VIEWS, _layout.row_views(state, table)))
         return attrs
 
     def __getstate__(self) -> dict:
@@ -332,8 +334,8 @@ class Simulation:
             tables.append(table)
         # Saved before the lookahead noted its stages, the column held -1 ("all given"):
         # none given, as after a prediction.
-        staged = tables[1][:, _loop.STAGED]
-        staged[staged & ~_loop.STAGE_BITS != 0] = 0
+        staged = tables[1][:, _layout.STAGED]
+        staged[staged & ~_layout.STAGE_BITS != 0] = 0
         state.update(self._tables(*tables, *(state.pop(name) for name in
                                              ("_hv", "_qhead", "_qs", "_qf"))))
         vars(self).update(state)
@@ -342,13 +344,15 @@ class Simulation:
         return (self._wa, self._wb, self._wstart, self._wwall, self._wsx, self._wsy)
 
     def _run(self, t_end, max_collisions, max_events, out, info, mode):
+        """One call of the event loop, with the state in its bundles (see loop.py)."""
+        particles = (self._S, self._E, self._stamp, self._nxt, self._prv, self._qt,
+                     self._tc, self._invm, self._image, self._order)
         return _loop.run(
-            t_end, max_collisions, max_events,
-            self._S, self._E, self._stamp, self._nxt, self._prv, self._qt, self._tc,
-            self._invm, self._image, self._gi, self._gf, self._head,
-            *self._wall_args(), self._hv, self._qhead, self._qs, self._qf,
-            self._counts, self._acc, out, info, self._log_t, self._log_e,
-            self._log_n, self._order, mode,
+            t_end, max_collisions, max_events, mode, out, info, particles,
+            (self._gi, self._gf, self._head), self._wall_args(),
+            (self._hv, self._qhead, self._qs, self._qf), (self._counts, self._acc),
+            (self._log_t, self._log_e, self._log_n),
+            None if self._model is None else self._model.engine_params(),
         )
 
     def _queue_args(self):
@@ -364,24 +368,24 @@ class Simulation:
         # (The cells' Morton ranks are recomputed each time, about 40 ms at N = 10^6
         # every 20 N events, rather than held: 6 bytes a disk less.)
         rank = _grid.morton_rank(int(self._gi[0]), int(self._gi[1]))
-        perm = _grid.order_by_cell(self._E[:, _loop.CELL], rank, len(rank))
+        perm = _grid.order_by_cell(self._E[:, _layout.CELL], rank, len(rank))
         inv = np.empty_like(perm)
         inv[perm] = np.arange(len(perm))
         # (Whole rows move: the stamps with S, the queue times, candidate times and
         # inverse masses with E.  The cell lists and the queue are rebuilt; queue
         # links left in the rows of disks that end up outside the lists go unread.)
-        state = aligned_rows(len(perm), _loop.N_STATE, np.float64)
+        state = aligned_rows(len(perm), _layout.N_STATE, np.float64)
         state[:] = self._S[perm]
         queue = _queue.allocate(len(perm))
         queue[4][_queue.LOOKAHEAD] = self._qs[_queue.LOOKAHEAD]  # (forced on in tests)
         table = queue[1]
         table[:] = self._E[perm]
-        table[:, _loop.STAGED] = 0  # (what the lookahead fetched has moved)
-        disk = table[:, _loop.KIND] & _loop._KIND_MASK == _loop.DISK
-        table[disk, _loop.PARTNER] = inv[table[disk, _loop.PARTNER]]
-        _, nxt, prv, times, _, _ = _loop.row_views(state, table)
+        table[:, _layout.STAGED] = 0  # (what the lookahead fetched has moved)
+        disk = table[:, _layout.KIND] & _layout.KIND_MASK == _layout.DISK
+        table[disk, _layout.PARTNER] = inv[table[disk, _layout.PARTNER]]
+        _, nxt, prv, times, _, _ = _layout.row_views(state, table)
         head = np.empty_like(self._head)
-        _grid.build_lists(table[:, _loop.CELL], head, nxt, prv)
+        _grid.build_lists(table[:, _layout.CELL], head, nxt, prv)
         _queue.build(self._time, times, *queue)  # (times is queue[0]: as in the loop)
         vars(self).update(self._tables(state, *queue[1:]), _mass=self._mass[perm],
                           _order=self._order[perm], _image=self._image[perm], _head=head,
@@ -395,7 +399,7 @@ class Simulation:
 
     def _predict_all(self) -> None:
         self._run(math.inf, 0, 0, np.array([self._time]), np.full(2, -1, np.int64),
-                  _loop.PREDICT_ALL)
+                  _layout.PREDICT_ALL)
 
     def advance(self, until: float | None = None, collisions: int | None = None) -> Simulation:
         """Run the simulation forward, event by event, in time order.
@@ -446,29 +450,29 @@ class Simulation:
         out = np.array([self._time])
         info = np.full(2, -1, np.int64)
         while True:
-            before = int(self._counts[_loop.C_COLLISIONS])
+            before = int(self._counts[_layout.C_COLLISIONS])
             events_before = self.counts.events
             budget = min(_CHUNK_EVENTS, self._reorder_every - self._since_reorder)
             try:
-                status = self._run(t_end, remaining, budget, out, info, _loop.RUN_EVENTS)
+                status = self._run(t_end, remaining, budget, out, info, _layout.RUN_EVENTS)
             finally:
                 # Also when Ctrl-C arrives as the engine returns: the clock must follow
                 # the events the engine has processed, or positions would be read at a
                 # time earlier than the disks' own.
                 self._time = float(out[0])
                 self._since_reorder += self.counts.events - events_before
-            remaining -= int(self._counts[_loop.C_COLLISIONS]) - before
-            if status != _loop.REACHED_EVENT_LIMIT:
+            remaining -= int(self._counts[_layout.C_COLLISIONS]) - before
+            if status != _layout.REACHED_EVENT_LIMIT:
                 # (No reordering here: an error below names disks by internal index.)
                 break
             if self._since_reorder >= self._reorder_every:
                 self._reorder()
-        if status in (_loop.REACHED_TIME, _loop.NO_EVENTS) and until is not None:
+        if status in (_layout.REACHED_TIME, _layout.NO_EVENTS) and until is not None:
             self._time = t_end
             return self
-        if status == _loop.REACHED_COLLISIONS:
+        if status == _layout.REACHED_COLLISIONS:
             return self
-        if status == _loop.NO_EVENTS:
+        if status == _layout.NO_EVENTS:
             raise RuntimeError(
                 f"no further event can ever happen (t={self._time}): "
                 f"{remaining} of the {max_coll} requested collisions cannot occur"
@@ -476,14 +480,14 @@ class Simulation:
         i, j = int(info[0]), int(info[1])
         t_bad = float(self._qt[i])
         i = int(self._order[i])
-        if status == _loop.ERR_IMMOVABLE_PAIR:
+        if status == _layout.ERR_IMMOVABLE_PAIR:
             j = int(self._order[j])
             raise RuntimeError(
                 f"immovable disks {i} and {j} (mass=inf) meet at t={t_bad}: two immovable "
                 f"bodies cannot collide. The simulation stopped at t={self._time}."
             )
-        if status == _loop.ERR_IMMOVABLE_WALL:
-            where = f"walls[{j}]" if j >= 0 else f"the box wall at {_BOX_WALL_NAMES[-1 - j]}"
+        if status == _layout.ERR_IMMOVABLE_WALL:
+            where = f"walls[{j}]" if j >= 0 else f"the box wall at {_layout.BOX_WALL_NAMES[-1 - j]}"
             raise RuntimeError(
                 f"immovable disk {i} (mass=inf) reaches {where} at t={t_bad}: an immovable "
                 f"disk cannot bounce. The simulation stopped at t={self._time}."
@@ -497,7 +501,7 @@ class Simulation:
     def __repr__(self) -> str:
         return (
             f"Simulation(n={len(self)}, time={self._time:.6g}, box={self._box!r}, "
-            f"walls={len(self._walls)}, collisions={int(self._counts[_loop.C_COLLISIONS])})"
+            f"walls={len(self._walls)}, collisions={int(self._counts[_layout.C_COLLISIONS])})"
         )
 
     @property
@@ -514,7 +518,7 @@ class Simulation:
     def positions(self) -> np.ndarray:
         """Disk centres at :attr:`time`, shape (N, 2), a copy (wrapped into the box)."""
         out = np.empty((len(self._S), 2))
-        _loop.synchronized_positions(self._time, self._S, self._gi, self._gf, out)
+        _flight.synchronized_positions(self._time, self._S, self._gi, self._gf, out)
         return self._to_user(out)
 
     @property
@@ -524,19 +528,18 @@ class Simulation:
         Differences of these between two times are true displacements (for diffusion
         studies); on walled axes they equal :attr:`positions`.
         """
-        S = self._S
-        dt = (self._time - S[:, _loop.T])[:, None]
-        return self._to_user(S[:, 0:2] + dt * S[:, 2:4] + self._image * self._box.size)
+        return self._to_user(_flight.positions_at(self._time, self._S)
+                             + self._image * self._box.size)
 
     @property
     def velocities(self) -> np.ndarray:
         """Disk velocities, shape (N, 2), a copy."""
-        return self._to_user(self._S[:, _loop.VX:_loop.VY + 1])
+        return self._to_user(self._S[:, _layout.VX:_layout.VY + 1])
 
     @property
     def radii(self) -> np.ndarray:
         """Disk radii, shape (N,), a copy."""
-        return self._to_user(self._S[:, _loop.R])
+        return self._to_user(self._S[:, _layout.R])
 
     @property
     def masses(self) -> np.ndarray:
@@ -557,20 +560,20 @@ class Simulation:
     def counts(self) -> Counts:
         """Event counts since creation (see :class:`Counts`)."""
         c = self._counts
-        coll, wall, cross = (int(c[_loop.C_COLLISIONS]), int(c[_loop.C_WALL]),
-                             int(c[_loop.C_CROSSINGS]))
-        return Counts(coll, wall, cross, coll + wall + cross, int(c[_loop.C_STALE]))
+        coll, wall, cross = (int(c[_layout.C_COLLISIONS]), int(c[_layout.C_WALL]),
+                             int(c[_layout.C_CROSSINGS]))
+        return Counts(coll, wall, cross, coll + wall + cross, int(c[_layout.C_STALE]))
 
     def kinetic_energy(self) -> float:
         """Total kinetic energy of the movable disks, ``sum m v^2 / 2``."""
         movable = self._invm > 0
-        vel = self._S[movable, _loop.VX:_loop.VY + 1]
+        vel = self._S[movable, _layout.VX:_layout.VY + 1]
         return float(0.5 * np.dot(self._mass[movable], np.einsum("ij,ij->i", vel, vel)))
 
     def momentum(self) -> np.ndarray:
         """Total momentum of the movable disks, shape (2,)."""
         movable = self._invm > 0
-        return self._mass[movable] @ self._S[movable, _loop.VX:_loop.VY + 1]
+        return self._mass[movable] @ self._S[movable, _layout.VX:_layout.VY + 1]
 
     def set_velocities(self, velocities) -> None:
         """Replace all velocities at the current time (e.g. to rescale the temperature).
@@ -579,14 +582,12 @@ class Simulation:
         """
         vel = as_float_array("velocities", velocities, (len(self), 2))
         self._sync_all()
-        self._S[:, _loop.VX:_loop.VY + 1] = vel[self._order]
+        self._S[:, _layout.VX:_layout.VY + 1] = vel[self._order]
         self._predict_all()  # every event and kept candidate is recomputed
 
     def _sync_all(self) -> None:
         """Move every stored position to the current time (local clocks all equal)."""
-        S = self._S
-        S[:, 0:2] += (self._time - S[:, _loop.T])[:, None] * S[:, 2:4]
-        S[:, _loop.T] = self._time
+        _flight.drift_all(self._time, self._S)
 
     def measure(self, duration: float, **kwargs):
         """Run for ``duration`` and return the measurements over that window.
@@ -604,11 +605,11 @@ class Simulation:
         impulses on the box walls and on the wall segments."""
         a = self._acc
         return {
-            "virial": float(a[_loop.A_VIRIAL]),
-            "virial_xx": float(a[_loop.A_VIRIAL_XX]),
-            "virial_yy": float(a[_loop.A_VIRIAL_YY]),
-            "box_impulse": a[_loop.A_BOX:_loop.A_BOX + 4].copy(),
-            "segment_impulse": float(a[_loop.A_SEGMENTS]),
+            "virial": float(a[_layout.A_VIRIAL]),
+            "virial_xx": float(a[_layout.A_VIRIAL_XX]),
+            "virial_yy": float(a[_layout.A_VIRIAL_YY]),
+            "box_impulse": a[_layout.A_BOX:_layout.A_BOX + 4].copy(),
+            "segment_impulse": float(a[_layout.A_SEGMENTS]),
         }
 
     def _record_events(self, capacity: int) -> None:

@@ -23,7 +23,7 @@ Arrays (``N`` disks):
     links;
 ``ql[i, NEXT]``, ``ql[i, PREV]``, ``ql[i, LOC]``
     (int32 columns of ``E``, whose other columns belong to the event loop, see
-    loop.py) ``NEXT``/``PREV`` link ``i`` in its bucket list; ``LOC`` is ``i``'s slot
+    layout.py) ``NEXT``/``PREV`` link ``i`` in its bucket list; ``LOC`` is ``i``'s slot
     in the heap if ``>= 0``, ``-1`` if not queued, or ``-2 - list`` if in list
     ``list`` (``nb`` is the overflow list);
 ``hv[k]`` (int32)
@@ -50,18 +50,17 @@ import numpy as np
 
 from .._jit import kernel, njit
 from . import aligned_rows, prefetch
+from .layout import LOC, N_E, NEXT, PREV, QT
 
 INF = math.inf
 
-# Columns of ql (the engine's table E, see loop.py): int32 columns, and the float64
-# column (of E.view(np.float64)) that holds qt.  One row is 64 bytes: a cache line.
-NEXT, PREV, LOC = 5, 6, 7
-QT = 4
-N_QL = 16
+# Columns of ql (the engine's table E, declared in layout.py): int32 columns, and the
+# float64 column (of E.view(np.float64)) that holds qt.  One row is 64 bytes.
+N_QL = N_E
 # qs: current bucket, heap size, events in the year's lists, events in overflow,
 # nb - 1, bucket at which the overflow is next scanned, heap insertions and bucket
 # steps since the bucket width was last checked, whether the event loop prefetches
-# ahead along the lists (1) or not (0; see loop.py, _lookahead), and the first disk of
+# ahead along the lists (1) or not (0; see lookahead.py), and the first disk of
 # the list that ``top`` last moved into the heap (-1 if the heap was filled otherwise):
 # its links run through that list only until one of the heap's disks is re-queued, so
 # it means something only right after the ``top`` that set it.

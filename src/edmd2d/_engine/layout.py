@@ -1,0 +1,198 @@
+"""The engine's state layout, declared once: row tables, event codes, counters, statuses.
+
+Per-disk data sits in two tables of 64-byte rows (64-byte aligned, so that a row is one
+cache line):
+
+``S[i]``, what other disks read of disk ``i`` when they predict against it: its state
+``(x, y, vx, vy, t_local, radius)`` (float64), its invalidation counter ``stamp`` and its
+links in its grid cell's list (int32).
+
+``E[i]``, what only disk ``i``'s own events use: its cell, its kept candidate (the best
+event that is not a cell crossing: kind, partner, aux, the partner's stamp and its time
+``tc``), its links and scheduled time ``qt`` in the calendar queue, ``1/mass``, and the
+lookahead's notes of the prefetch stages given to its event (a hint).
+
+Every column is declared below with the table, dtype and index in that dtype's view of
+the table (``S``, ``S.view(np.int32)``, ``E``, ``E.view(np.float64)``); :func:`check`
+(run at import) verifies that no two columns share a byte and that each row holds 64.
+
+Event codes are packed into the int32 columns by the named helpers below: a kind and,
+for a cell crossing, its direction; a periodic image shift; a wall segment's part and
+image shift; a box wall's side.
+"""
+
+from __future__ import annotations
+
+from enum import IntEnum
+
+import numpy as np
+
+from .._jit import njit
+
+ROW_BYTES = 64
+
+# (table, dtype of the view, index in that view) for every column; the names are the
+# module's constants below.
+COLUMNS: dict[str, tuple[str, type, int]] = {}
+
+
+def _col(name: str, table: str, dtype, index: int) -> int:
+    COLUMNS[name] = (table, np.dtype(dtype), index)
+    return index
+
+
+# --- S: the state row (S is float64; its int32 columns are those of S.view(np.int32))
+X = _col("X", "S", np.float64, 0)
+Y = _col("Y", "S", np.float64, 1)
+VX = _col("VX", "S", np.float64, 2)
+VY = _col("VY", "S", np.float64, 3)
+T = _col("T", "S", np.float64, 4)  # the disk's local time: x, y are valid at T
+R = _col("R", "S", np.float64, 5)
+S_STAMP = _col("S_STAMP", "S", np.int32, 12)  # invalidation counter
+S_NEXT = _col("S_NEXT", "S", np.int32, 13)  # next disk in the cell's list (-1: none)
+S_PREV = _col("S_PREV", "S", np.int32, 14)  # previous disk in the cell's list
+N_STATE = ROW_BYTES // 8  # float64 columns per S row
+
+# --- E: the bookkeeping row (E is int32; its float64 columns are those of
+# E.view(np.float64))
+CELL = _col("CELL", "E", np.int32, 0)
+KIND = _col("KIND", "E", np.int32, 1)  # kept candidate's kind; crossing direction above
+PARTNER = _col("PARTNER", "E", np.int32, 2)  # disk, wall segment or box side
+AUX = _col("AUX", "E", np.int32, 3)  # image shift (disk) or part and shift (segment)
+PSTAMP = _col("PSTAMP", "E", np.int32, 4)  # the partner's stamp when predicted
+NEXT = _col("NEXT", "E", np.int32, 5)  # calendar queue: next in the bucket list
+PREV = _col("PREV", "E", np.int32, 6)  # calendar queue: previous in the bucket list
+LOC = _col("LOC", "E", np.int32, 7)  # calendar queue: heap slot, list, or -1
+QT = _col("QT", "E", np.float64, 4)  # scheduled event time (inf: none)
+E_TC = _col("E_TC", "E", np.float64, 5)  # time of the kept candidate
+E_INVM = _col("E_INVM", "E", np.float64, 6)  # 1 / mass (0: immovable)
+STAGED = _col("STAGED", "E", np.int32, 15)  # lookahead stages given, as bits (a hint)
+N_E = ROW_BYTES // 4  # int32 columns per E row
+STAGE_BITS = 0b1110  # the bits of STAGED in use: stages 1-3
+
+
+def check() -> None:
+    """Raise ``RuntimeError`` if two columns share a byte or one leaves its 64-byte row
+    (a programming error in this file, caught at import)."""
+    used: dict[str, dict[int, str]] = {"S": {}, "E": {}}
+    for name, (table, dtype, index) in COLUMNS.items():
+        start = index * dtype.itemsize
+        for byte in range(start, start + dtype.itemsize):
+            if byte >= ROW_BYTES:
+                raise RuntimeError(f"column {name} leaves its {ROW_BYTES}-byte row")
+            if byte in used[table]:
+                raise RuntimeError(f"columns {used[table][byte]} and {name} share byte "
+                                   f"{byte} of table {table}")
+            used[table][byte] = name
+
+
+check()
+
+
+def row_views(S, E):
+    """The per-disk columns kept inside the rows of ``S`` and ``E``, as 1-D views
+    (writable, strided): ``(stamp, nxt, prv, qt, tc, invm)``."""
+    si = S.view(np.int32)
+    ef = E.view(np.float64)
+    return (si[:, S_STAMP], si[:, S_NEXT], si[:, S_PREV], ef[:, QT], ef[:, E_TC],
+            ef[:, E_INVM])
+
+
+class Kind(IntEnum):
+    """Event kinds (the low bits of ``E[:, KIND]`` and the event log's kind column)."""
+
+    NONE = 0
+    DISK = 1
+    SEGMENT = 2
+    BOX = 3
+    CROSS = 4
+
+
+# (Plain ints for the compiled code.)
+NONE = int(Kind.NONE)
+DISK = int(Kind.DISK)
+SEGMENT = int(Kind.SEGMENT)
+BOX = int(Kind.BOX)
+CROSS = int(Kind.CROSS)
+KIND_MASK = 15  # low bits of E[:, KIND]; the bits above hold a crossing's direction
+
+
+@njit
+def pack_kind(kind, direction):
+    """``E[:, KIND]`` for a kept candidate of ``kind`` and a scheduled cell crossing in
+    ``direction`` (0-3: +x, -x, +y, -y)."""
+    return kind | (direction << 4)
+
+
+@njit
+def kind_of(code):
+    """The kept candidate's kind in ``E[:, KIND]``."""
+    return code & KIND_MASK
+
+
+@njit
+def direction_of(code):
+    """The scheduled cell crossing's direction (0-3: +x, -x, +y, -y) in ``E[:, KIND]``."""
+    return code >> 4
+
+
+@njit
+def pack_shift(sx, sy):
+    """A periodic image shift ``(sx, sy)``, each -1, 0 or +1 box lengths, as 0-8."""
+    return (sx + 1) * 3 + (sy + 1)
+
+
+@njit
+def unpack_shift(code):
+    """The image shift ``(sx, sy)`` of :func:`pack_shift`."""
+    return code // 3 - 1, code % 3 - 1
+
+
+@njit
+def pack_segment(part, shift):
+    """A wall-segment contact: ``part`` 0 (side), 1 (start) or 2 (end point), and the
+    packed image shift of the segment."""
+    return part + 3 * shift
+
+
+@njit
+def unpack_segment(aux):
+    """``(part, shift)`` of :func:`pack_segment`."""
+    return aux % 3, aux // 3
+
+
+# Box walls (the partner of a BOX event): x=0, x=width, y=0, y=height, i.e.
+# 2 * axis + (1 at the far wall)
+BOX_WALL_NAMES = ("x=0", "x=width", "y=0", "y=height")
+
+# Counters (counts[...])
+C_COLLISIONS = 0
+C_WALL = 1
+C_CROSSINGS = 2
+C_STALE = 3
+N_COUNTS = 4
+
+# Accumulators (acc[...]): sum of J*|r_ij| over disk collisions (collision virial), the
+# impulse delivered to each box wall (x=0, x=W, y=0, y=H) and to all wall segments, the
+# diagonal of the virial tensor, sum J |r_ij| n_x^2 and sum J |r_ij| n_y^2, and the
+# kinetic energy lost in inelastic collisions.
+A_VIRIAL = 0
+A_BOX = 1  # 1..4
+A_SEGMENTS = 5
+A_VIRIAL_XX = 6
+A_VIRIAL_YY = 7
+A_DISSIPATED = 8
+N_ACC = 9
+
+# Modes of run(): process events, or predict every disk afresh and rebuild the queue
+RUN_EVENTS = 0
+PREDICT_ALL = 1
+
+# Status codes returned by run()
+REACHED_TIME = 0
+REACHED_COLLISIONS = 1
+REACHED_EVENT_LIMIT = 2
+NO_EVENTS = 3
+ERR_IMMOVABLE_PAIR = 10
+ERR_IMMOVABLE_WALL = 11
+ERR_STALLED = 12  # inelastic collapse: unboundedly many collisions in no time

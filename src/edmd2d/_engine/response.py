@@ -1,0 +1,188 @@
+"""Collision responses: what a contact does to the velocities.
+
+A contact exchanges an impulse ``J`` along the unit normal ``n`` at the contact point.
+With ``vn`` the normal relative velocity (< 0 when approaching), ``w = 1/m`` the
+inverse masses (0 for an immovable disk) and ``e`` the coefficient of restitution,
+``J = -(1 + e) vn / (w_i + w_j)`` reverses ``vn`` and scales it by ``e``: ``e = 1`` is
+elastic (energy conserved), ``e < 1`` loses ``(1 - e^2) vn^2 / (2 (w_i + w_j))`` of
+kinetic energy.  A wall is a partner with ``w = 0``.
+
+The model argument chooses the physics: ``None`` for elastic disks (the default, which
+compiles to the plain elastic formulas), or the restitution model's tuple
+``(table, species, wall, tc, t_last, streak)`` (see ``edmd2d.models.Restitution``):
+
+- ``table[a, b]``: the coefficient for a pair of species ``a, b``; ``species[i]`` per
+  disk (rows in the engine's internal order); ``wall``: the coefficient against box
+  walls and wall segments;
+- the TC model (Luding and McNamara 1998): a collision is elastic when a movable disk
+  involved collided less than ``tc`` ago; ``t_last[i]``, the time of disk ``i``'s last
+  collision (-inf before the first; never set for immovable disks, which act as walls);
+- ``streak[i]``: how many collisions in a row disk ``i`` took part in, each at the
+  same time as its previous one to within a relative ``INSTANT``: an inelastic
+  collapse that the TC model does not stop (``tc`` = 0) makes a streak grow without
+  end, and :func:`stalls` stops the run at ``STALL_COLLISIONS``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .._jit import kernel, njit
+from .layout import (
+    A_BOX,
+    A_DISSIPATED,
+    A_SEGMENTS,
+    A_VIRIAL,
+    A_VIRIAL_XX,
+    A_VIRIAL_YY,
+    BOX,
+    VX,
+    VY,
+    X,
+    Y,
+    unpack_segment,
+    unpack_shift,
+)
+
+# Two collisions of a disk count as simultaneous when their times differ by at most
+# this fraction of the time (a few hundred units of rounding).
+INSTANT = 1e-13
+# Simultaneous collisions in a row of one disk at which the run stops: a finite
+# number of disks in elastic contact resolve in far fewer.
+STALL_COLLISIONS = 10_000
+
+
+@njit
+def _pair_impulse(i, j, t, dvn, wi, wj, acc, model):
+    """The impulse magnitude ``J`` of an approaching pair (``dvn < 0``)."""
+    if model is None:
+        # Momentum J n moves from j to i; with the reduced mass this reverses the
+        # normal relative velocity (elastic).
+        return -2.0 * dvn / (wi + wj)
+    table, species, _, tc, t_last, _ = model
+    e = table[species[i], species[j]]
+    if t - t_last[i] < tc or t - t_last[j] < tc:
+        e = 1.0  # the TC model: a disk still "in contact" collides elastically
+    acc[A_DISSIPATED] += 0.5 * (1.0 - e * e) * dvn * dvn / (wi + wj)
+    return -(1.0 + e) * dvn / (wi + wj)
+
+
+@njit
+def _wall_factor(i, t, vn, wi, acc, model):
+    """``1 + e`` for disk ``i`` approaching a wall at normal velocity ``vn < 0``."""
+    if model is None:
+        return 2.0
+    _, _, e, tc, t_last, _ = model
+    if t - t_last[i] < tc:
+        e = 1.0
+    acc[A_DISSIPATED] += 0.5 * (1.0 - e * e) * vn * vn / wi
+    return 1.0 + e
+
+
+@njit
+def _simultaneous(t, before):
+    return t - before <= INSTANT * abs(t)
+
+
+@njit
+def stalls(i, j, t, invm, model):
+    """Whether the collision of disk ``i`` with disk ``j`` (``-1``: a wall) at time
+    ``t`` would make a streak of ``STALL_COLLISIONS`` simultaneous collisions: the
+    run must stop (an inelastic collapse).  Never for elastic disks."""
+    if model is None:
+        return False
+    t_last = model[4]
+    streak = model[5]
+    if invm[i] > 0.0 and _simultaneous(t, t_last[i]) and streak[i] + 1 >= STALL_COLLISIONS:
+        return True
+    return (j >= 0 and invm[j] > 0.0 and _simultaneous(t, t_last[j])
+            and streak[j] + 1 >= STALL_COLLISIONS)
+
+
+@njit
+def _note_collision(i, t, invm, model):
+    """Record that movable disk ``i`` collided at ``t`` (the TC model's clock)."""
+    if model is None:
+        return
+    t_last = model[4]
+    streak = model[5]
+    if invm[i] > 0.0:
+        streak[i] = streak[i] + 1 if _simultaneous(t, t_last[i]) else 0
+        t_last[i] = t
+
+
+@kernel
+def collide_pair(i, j, t, aux, S, invm, acc, gf, model):
+    """Resolve the contact of disks ``i`` and ``j`` (both at time ``t``; ``j`` seen
+    through the periodic image shift ``aux``), and add its impulse to the collision
+    virial.  A contact that rounding left not approaching exchanges nothing."""
+    sx, sy = unpack_shift(aux)
+    dx = S[i, X] - (S[j, X] + sx * gf[0])
+    dy = S[i, Y] - (S[j, Y] + sy * gf[1])
+    dist = math.sqrt(dx * dx + dy * dy)
+    nx = dx / dist
+    ny = dy / dist
+    dvn = (S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny
+    if dvn < 0.0:
+        wi = invm[i]
+        wj = invm[j]
+        impulse = _pair_impulse(i, j, t, dvn, wi, wj, acc, model)
+        S[i, VX] += impulse * wi * nx
+        S[i, VY] += impulse * wi * ny
+        S[j, VX] -= impulse * wj * nx
+        S[j, VY] -= impulse * wj * ny
+        jr = impulse * dist
+        acc[A_VIRIAL] += jr
+        acc[A_VIRIAL_XX] += jr * nx * nx
+        acc[A_VIRIAL_YY] += jr * ny * ny
+    _note_collision(i, t, invm, model)
+    _note_collision(j, t, invm, model)
+
+
+@kernel
+def collide_wall(i, t, kind, partner, aux, S, invm, acc, gf, wa, wb, model):
+    """Resolve the contact of disk ``i`` (at time ``t``) with box wall ``aux`` (``kind``
+    BOX: x=0, x=width, y=0, y=height) or with the wall segment ``partner`` (its side or
+    an end point, and its image shift, packed in ``aux``), and add the impulse to that
+    wall's tally."""
+    if kind == BOX:
+        # Lower wall: normal +e; upper wall: normal -e.
+        sign = 1.0 if aux % 2 == 0 else -1.0
+        nx = sign if aux < 2 else 0.0
+        ny = 0.0 if aux < 2 else sign
+        slot = A_BOX + aux
+    else:
+        part, code = unpack_segment(aux)
+        sx, sy = unpack_shift(code)
+        shx = sx * gf[0]
+        shy = sy * gf[1]
+        ax = wa[partner, 0] + shx
+        ay = wa[partner, 1] + shy
+        bx = wb[partner, 0] + shx
+        by = wb[partner, 1] + shy
+        if part == 0:
+            ux = bx - ax
+            uy = by - ay
+            ln = math.sqrt(ux * ux + uy * uy)
+            nx = -uy / ln
+            ny = ux / ln
+            if (S[i, X] - ax) * nx + (S[i, Y] - ay) * ny < 0.0:
+                nx = -nx
+                ny = -ny
+        else:
+            ex = ax if part == 1 else bx
+            ey = ay if part == 1 else by
+            nx = S[i, X] - ex
+            ny = S[i, Y] - ey
+            ln = math.sqrt(nx * nx + ny * ny)
+            nx /= ln
+            ny /= ln
+        slot = A_SEGMENTS
+    # Mirror the normal velocity (scaled by e), if approaching.
+    vn = S[i, VX] * nx + S[i, VY] * ny
+    if vn < 0.0:
+        f = _wall_factor(i, t, vn, invm[i], acc, model)
+        S[i, VX] -= f * vn * nx
+        S[i, VY] -= f * vn * ny
+        acc[slot] += -f * vn / invm[i]
+    _note_collision(i, t, invm, model)

@@ -1,0 +1,193 @@
+"""Prediction: a disk's next event, from a scan of its grid neighbourhood.
+
+A disk's event is the earliest of its candidates: contacts with the disks in its 3x3
+neighbour cells, with the wall segments listed for its cell and with the box walls
+(:mod:`.predict` gives each contact time), and leaving its cell.  The best candidate
+that is not a cell crossing is kept in the disk's bookkeeping row (the "kept
+candidate": kind, partner, aux, the partner's stamp, and its time ``tc``); the
+scheduled event is the crossing if it comes first.
+
+Why a cell crossing only needs the newly exposed cells: the kept candidate is the
+earliest contact with everything in the old neighbourhood (still exact if its
+partner's stamp is unchanged); disks that entered the old neighbourhood since then
+predicted against ``i`` themselves; so only the row of cells that comes into range
+must be scanned.  A wrap, or a stale kept candidate, falls back to a full scan.
+"""
+
+from __future__ import annotations
+
+from .._jit import njit
+from . import prefetch
+from .flight import position_at
+from .grid import neighbour
+from .layout import (
+    AUX,
+    BOX,
+    CELL,
+    DISK,
+    KIND,
+    NONE,
+    PARTNER,
+    PSTAMP,
+    SEGMENT,
+    VX,
+    VY,
+    R,
+    kind_of,
+    pack_kind,
+    pack_segment,
+    pack_shift,
+)
+from .predict import INF, box_wall_time, exit_time, pair_time, segment_time
+
+
+@njit(inline="always")
+def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
+                S, stamp, gi, gf, head, nxt, best, partner, aux, pst):
+    """Earliest contact of disk ``i`` (at ``x, y`` at time ``t``) with the disks in the
+    cells at offsets ``[ox0, ox1] x [oy0, oy1]`` from ``(cx, cy)``, if before ``best``
+    (a time interval from ``t``)."""
+    ncx = gi[0]
+    for ox in range(ox0, ox1 + 1):
+        nxc, sx = neighbour(cx, ox, ncx, gi[2] != 0)
+        if nxc < 0:
+            continue
+        for oy in range(oy0, oy1 + 1):
+            nyc, sy = neighbour(cy, oy, gi[1], gi[3] != 0)
+            if nyc < 0:
+                continue
+            j = head[nxc + ncx * nyc]
+            while j >= 0:
+                if j != i:
+                    xj, yj = position_at(j, t, S)
+                    dx = x - (xj + sx * gf[0])
+                    dy = y - (yj + sy * gf[1])
+                    dtc = pair_time(dx, dy, vx - S[j, VX], vy - S[j, VY], r + S[j, R])
+                    if dtc < best:
+                        best = dtc
+                        partner = j
+                        aux = pack_shift(sx, sy)
+                        pst = stamp[j]
+                j = nxt[j]
+    return best, partner, aux, pst
+
+
+@njit(inline="always")
+def _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy, best, partner, aux):
+    """Earliest contact with the wall segments listed for cell ``c``, if before ``best``."""
+    if wa.shape[0] == 0:  # no segments: spare the bucket lookup (a cache miss at large N)
+        return best, partner, aux
+    for k in range(wstart[c], wstart[c + 1]):
+        w = wwall[k]
+        shx = wsx[k] * gf[0]
+        shy = wsy[k] * gf[1]
+        dtw, part = segment_time(x, y, vx, vy, r,
+                                 wa[w, 0] + shx, wa[w, 1] + shy,
+                                 wb[w, 0] + shx, wb[w, 1] + shy)
+        if dtw < best:
+            best = dtw
+            partner = w
+            aux = pack_segment(part, pack_shift(wsx[k], wsy[k]))
+    return best, partner, aux
+
+
+@njit(inline="always")
+def _schedule(i, t, x, y, vx, vy, cx, cy, tc, E, gi, gf):
+    """The time of disk ``i``'s next event: the earlier of its kept candidate and
+    leaving its cell (whose direction is recorded in ``E[i, KIND]``)."""
+    dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
+    dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
+    if dty < dtx:
+        dtx = dty
+        aux = 2 if diry > 0 else 3
+    else:
+        aux = 0 if dirx > 0 else 1
+    E[i, KIND] = pack_kind(kind_of(E[i, KIND]), aux)
+    return min(tc[i], t + dtx)
+
+
+@njit(inline="always")
+def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
+            wa, wb, wstart, wwall, wsx, wsy):
+    """Predict disk ``i``'s next event from time ``t``, keep its best non-crossing
+    candidate, and return the time of the scheduled event.
+
+    ``direction = -1``: a full prediction (all 9 neighbour cells, the walls listed for
+    its cell, the box walls).  ``direction`` 0-3: ``i`` has just crossed into its
+    current cell (not wrapped) in direction +x, -x, +y, -y; if its kept candidate is
+    still valid only the newly exposed row of 3 cells (and the cell's walls) is
+    scanned against it, otherwise the prediction is a full one.
+
+    (One function for both, compiled into the event loop at a single place.)
+    """
+    partial = direction >= 0 and not (
+        kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
+    vx = S[i, VX]
+    vy = S[i, VY]
+    x, y = position_at(i, t, S)
+    r = S[i, R]
+    c = E[i, CELL]
+    cy = c // gi[0]
+    cx = c - cy * gi[0]
+
+    if partial:
+        if direction == 0:
+            ox0, ox1, oy0, oy1 = 1, 1, -1, 1
+        elif direction == 1:
+            ox0, ox1, oy0, oy1 = -1, -1, -1, 1
+        elif direction == 2:
+            ox0, ox1, oy0, oy1 = -1, 1, 1, 1
+        else:
+            ox0, ox1, oy0, oy1 = -1, 1, -1, -1
+        best = tc[i] - t
+        kind = NONE  # stays NONE unless something beats the kept candidate
+        aux = 0
+    else:
+        ox0, ox1, oy0, oy1 = -1, 1, -1, 1
+        # The three rows of neighbour cells are far apart in memory: request all
+        # three at once instead of one after the other inside the scan.
+        for oy in range(-1, 2):
+            nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
+            if nyc >= 0:
+                prefetch(head, max(cx - 1, 0) + gi[0] * nyc)
+        best = INF
+        kind = NONE
+        aux = 0
+        if gi[2] == 0:
+            dtw, side = box_wall_time(x, vx, r, gf[0])
+            if dtw < best:
+                best = dtw
+                kind = BOX
+                aux = side
+        if gi[3] == 0:
+            dtw, side = box_wall_time(y, vy, r, gf[1])
+            if dtw < best:
+                best = dtw
+                kind = BOX
+                aux = 2 + side
+    partner = -1
+    pst = 0
+    bd, pd, ad, ps = _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
+                                 S, stamp, gi, gf, head, nxt, best, -1, 0, 0)
+    if bd < best:
+        best = bd
+        kind = DISK
+        partner = pd
+        aux = ad
+        pst = ps
+    bw, pw, aw = _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy,
+                             best, -1, 0)
+    if bw < best:
+        best = bw
+        kind = SEGMENT
+        partner = pw
+        aux = aw
+        pst = 0
+    if not partial or kind != NONE:
+        tc[i] = t + best
+        E[i, KIND] = kind
+        E[i, PARTNER] = partner
+        E[i, AUX] = aux
+        E[i, PSTAMP] = pst
+    return _schedule(i, t, x, y, vx, vy, cx, cy, tc, E, gi, gf)
+

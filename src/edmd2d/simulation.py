@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import models as _models
 from ._engine import aligned_rows
 from ._engine import flight as _flight
 from ._engine import grid as _grid
@@ -95,6 +96,23 @@ class Simulation:
         Side of the grid cells (advanced).  Must be at least the largest diameter;
         the default is that bound, widened in dilute systems to keep at most about
         two cells per disk.
+    species : array_like of int, shape (N,), optional
+        Each disk's species (``0, 1, ...``), which selects its row of the
+        ``restitution`` table; all 0 by default.
+    restitution : float or array_like, shape (S, S), default 1.0
+        Coefficient of normal restitution ``e`` in ``(0, 1]`` of disk-disk collisions:
+        one value, or a symmetric table indexed by the two disks' species (``S`` at
+        least the number of species).  ``1`` is elastic.  Below 1 each collision
+        reverses the normal relative velocity and multiplies it by ``e``, with the TC
+        model against inelastic collapse (see :mod:`edmd2d.models`).
+    wall_restitution : float, default 1.0
+        Coefficient of normal restitution against box walls and wall segments.
+    tc : float, optional
+        The TC model's duration (``>= 0``): a collision is elastic when a disk
+        involved collided less than ``tc`` ago.  Default ``1e-5`` of the time a disk
+        of mean diameter needs to cross it at the initial root-mean-square speed.
+        Used only when some coefficient is below 1; ``0`` turns the model off, and a
+        run that collapses then stops with a ``RuntimeError``.
 
     Raises
     ------
@@ -137,6 +155,10 @@ class Simulation:
         *,
         time: float = 0.0,
         cell_size: float | None = None,
+        species=None,
+        restitution=1.0,
+        wall_restitution=1.0,
+        tc: float | None = None,
     ) -> None:
         if box is None:
             raise TypeError("box is required: pass box=edmd2d.Box(width, height, periodic=...)")
@@ -160,29 +182,21 @@ class Simulation:
         pos = self._check_in_box(pos, rad)
         self._check_walls_in_box()
 
-        width, height = box.width, box.height
         dmax = 2.0 * float(rad.max())
-        for axis, length in (("width", width), ("height", height)):
+        for axis, length in (("width", box.width), ("height", box.height)):
             periodic = box.periodic[0 if axis == "width" else 1]
             if periodic and length < dmax:
                 raise ValueError(
                     f"box {axis} {length} is smaller than the largest disk diameter {dmax}: "
                     "on a periodic axis a disk would overlap its own image"
                 )
-        side_min = dmax * (1.0 + _CELL_MARGIN)
-        if cell_size is None:
-            side = max(side_min, math.sqrt(width * height / (2.0 * n)))
-        else:
-            side = float(as_float_array("cell_size", cell_size, ()))
-            if not side >= dmax:
+        if cell_size is not None:
+            cell_size = float(as_float_array("cell_size", cell_size, ()))
+            if not cell_size >= dmax:
                 raise ValueError(
-                    f"cell_size must be at least the largest diameter {dmax}, got {side}"
+                    f"cell_size must be at least the largest diameter {dmax}, got {cell_size}"
                 )
-            side = max(side, side_min)
-        ncx = max(1, int(width // side))
-        ncy = max(1, int(height // side))
-        self._gi = np.array([ncx, ncy, int(box.periodic[0]), int(box.periodic[1])], np.int64)
-        self._gf = np.array([width, height, width / ncx, height / ncy], np.float64)
+        model = _build_model(species, restitution, wall_restitution, tc, rad, vel)
 
         # Per-disk state and bookkeeping, one 64-byte row each in S and E (see
         # _engine/layout.py for the columns).
@@ -203,22 +217,17 @@ class Simulation:
         # Image counters stay int64: a fast disk in a small periodic box can wrap more
         # than 2^31 times in a long run.
         self._image = np.zeros((n, 2), np.int64)
-        self._head = np.empty(ncx * ncy, np.int32)
-        _grid.build_cells(pos, self._gi, self._gf, self._E[:, _layout.CELL], self._head,
-                          self._nxt, self._prv)
         if wall_list:
             self._wa = np.array([w.start for w in wall_list], np.float64)
             self._wb = np.array([w.end for w in wall_list], np.float64)
         else:
             self._wa = np.zeros((0, 2))
             self._wb = np.zeros((0, 2))
-        reach = 0.5 * dmax + _CELL_MARGIN * (side + dmax)
-        self._wstart, self._wwall, self._wsx, self._wsy = _grid.bucket_walls(
-            self._wa, self._wb, self._gi, self._gf, reach
-        )
+        self._build_grid(pos, dmax, cell_size)
         self._check_overlaps(pos, rad)
 
-        self._model = None
+        self._species = None if species is None else model[0]
+        self._model = model[1]
         self._counts = np.zeros(_layout.N_COUNTS, np.int64)
         self._acc = np.zeros(_layout.N_ACC, np.float64)
         self._log_t = np.zeros(0)
@@ -233,6 +242,33 @@ class Simulation:
         self._predict_all()
         if n >= _REORDER_MIN_DISKS:
             self._reorder()
+
+    # ------------------------------------------------------------------ grid
+    def _build_grid(self, pos: np.ndarray, dmax: float, cell_size: float | None) -> None:
+        """(Re)build the grid for disks of largest diameter ``dmax`` at ``pos`` (stored
+        positions, inside the box): the cell geometry, each disk's cell, the cells'
+        lists and the wall segments listed per cell.  Cells are at least ``dmax`` wide
+        (``cell_size``, if given, is at least that); the default widens them in dilute
+        systems to keep at most about two cells per disk.  The kept candidates and the
+        queue are not touched: predict every disk afresh after a rebuild."""
+        width, height = self._box.width, self._box.height
+        side_min = dmax * (1.0 + _CELL_MARGIN)
+        if cell_size is None:
+            side = max(side_min, math.sqrt(width * height / (2.0 * len(pos))))
+        else:
+            side = max(cell_size, side_min)
+        ncx = max(1, int(width // side))
+        ncy = max(1, int(height // side))
+        periodic = self._box.periodic
+        self._gi = np.array([ncx, ncy, int(periodic[0]), int(periodic[1])], np.int64)
+        self._gf = np.array([width, height, width / ncx, height / ncy], np.float64)
+        self._head = np.empty(ncx * ncy, np.int32)
+        _grid.build_cells(pos, self._gi, self._gf, self._E[:, _layout.CELL], self._head,
+                          self._nxt, self._prv)
+        reach = 0.5 * dmax + _CELL_MARGIN * (side + dmax)
+        self._wstart, self._wwall, self._wsx, self._wsy = _grid.bucket_walls(
+            self._wa, self._wb, self._gi, self._gf, reach
+        )
 
     # ------------------------------------------------------------------ validation
     def _check_in_box(self, pos: np.ndarray, rad: np.ndarray) -> np.ndarray:
@@ -338,6 +374,13 @@ class Simulation:
         staged[staged & ~_layout.STAGE_BITS != 0] = 0
         state.update(self._tables(*tables, *(state.pop(name) for name in
                                              ("_hv", "_qhead", "_qs", "_qf"))))
+        # Saved before models and species existed: elastic disks of one species, and
+        # no accumulated dissipation.
+        state.setdefault("_model", None)
+        state.setdefault("_species", None)
+        acc = state["_acc"]
+        if len(acc) < _layout.N_ACC:
+            state["_acc"] = np.concatenate([acc, np.zeros(_layout.N_ACC - len(acc))])
         vars(self).update(state)
 
     def _wall_args(self):
@@ -387,9 +430,10 @@ class Simulation:
         head = np.empty_like(self._head)
         _grid.build_lists(table[:, _layout.CELL], head, nxt, prv)
         _queue.build(self._time, times, *queue)  # (times is queue[0]: as in the loop)
+        model = None if self._model is None else self._model.permuted(perm)
         vars(self).update(self._tables(state, *queue[1:]), _mass=self._mass[perm],
                           _order=self._order[perm], _image=self._image[perm], _head=head,
-                          _since_reorder=0)
+                          _model=model, _since_reorder=0)
 
     def _to_user(self, internal: np.ndarray) -> np.ndarray:
         """Rows in the user's disk order (a new array)."""
@@ -477,22 +521,41 @@ class Simulation:
                 f"no further event can ever happen (t={self._time}): "
                 f"{remaining} of the {max_coll} requested collisions cannot occur"
             )
-        i, j = int(info[0]), int(info[1])
+        raise self._engine_error(status, int(info[0]), int(info[1]))
+
+    def _engine_error(self, status: int, i: int, j: int) -> RuntimeError:
+        """The exception for an error status of the engine, which stopped before the
+        event of internal disk ``i`` with ``j`` (a disk, a wall segment ``>= 0``, or
+        ``-1 - side`` for a box wall, as the event's kind says)."""
         t_bad = float(self._qt[i])
-        i = int(self._order[i])
+        user_i = int(self._order[i])
+        stopped = f"The simulation stopped at t={self._time}."
         if status == _layout.ERR_IMMOVABLE_PAIR:
-            j = int(self._order[j])
-            raise RuntimeError(
-                f"immovable disks {i} and {j} (mass=inf) meet at t={t_bad}: two immovable "
-                f"bodies cannot collide. The simulation stopped at t={self._time}."
+            return RuntimeError(
+                f"immovable disks {user_i} and {int(self._order[j])} (mass=inf) meet at "
+                f"t={t_bad}: two immovable bodies cannot collide. {stopped}"
             )
+        where = (f"walls[{j}]" if j >= 0
+                 else f"the box wall at {_layout.BOX_WALL_NAMES[-1 - j]}")
         if status == _layout.ERR_IMMOVABLE_WALL:
-            where = f"walls[{j}]" if j >= 0 else f"the box wall at {_layout.BOX_WALL_NAMES[-1 - j]}"
-            raise RuntimeError(
-                f"immovable disk {i} (mass=inf) reaches {where} at t={t_bad}: an immovable "
-                f"disk cannot bounce. The simulation stopped at t={self._time}."
+            return RuntimeError(
+                f"immovable disk {user_i} (mass=inf) reaches {where} at t={t_bad}: an "
+                f"immovable disk cannot bounce. {stopped}"
             )
-        raise RuntimeError(f"internal error: engine returned status {status}")  # pragma: no cover
+        if status == _layout.ERR_STALLED:
+            kind = _layout.kind_of(int(self._E[i, _layout.KIND]))
+            partner = f"disk {int(self._order[j])}" if kind == _layout.DISK else where
+            streak = self._model.streak
+            involved = np.sort(self._order[streak >= streak.max() // 10])
+            return RuntimeError(
+                f"inelastic collapse at t={t_bad}: disk {user_i} and {partner} would "
+                f"collide again at the same time, after {_models.STALL_COLLISIONS} "
+                f"collisions in a row that took no time (disks involved: "
+                f"{indices_where(np.isin(np.arange(len(self)), involved))}); the run would "
+                f"need unboundedly many events.  Use the TC model (tc > 0, "
+                f"now {self._model.tc}) to end the collapse. {stopped}"
+            )
+        return RuntimeError(f"internal error: engine returned status {status}")  # pragma: no cover
 
     # ------------------------------------------------------------------ state
     def __len__(self) -> int:
@@ -547,6 +610,32 @@ class Simulation:
         return self._to_user(self._mass)
 
     @property
+    def species(self) -> np.ndarray:
+        """Each disk's species (int), shape (N,), a copy; all 0 unless given."""
+        if self._species is None:
+            return np.zeros(len(self), np.int32)
+        return self._species.copy()
+
+    @property
+    def restitution(self) -> np.ndarray:
+        """Coefficient of normal restitution for each pair of species, shape (S, S),
+        a copy (all 1 for elastic disks)."""
+        if self._model is None:
+            n_species = int(self.species.max()) + 1
+            return np.ones((n_species, n_species))
+        return self._model.table.copy()
+
+    @property
+    def wall_restitution(self) -> float:
+        """Coefficient of normal restitution against box walls and wall segments."""
+        return 1.0 if self._model is None else self._model.wall
+
+    @property
+    def tc(self) -> float | None:
+        """The TC-model duration (see :mod:`edmd2d.models`); ``None`` for elastic disks."""
+        return None if self._model is None else self._model.tc
+
+    @property
     def box(self) -> Box:
         """The container."""
         return self._box
@@ -569,6 +658,12 @@ class Simulation:
         movable = self._invm > 0
         vel = self._S[movable, _layout.VX:_layout.VY + 1]
         return float(0.5 * np.dot(self._mass[movable], np.einsum("ij,ij->i", vel, vel)))
+
+    def dissipated_energy(self) -> float:
+        """Kinetic energy lost in inelastic collisions since creation (0 for elastic
+        disks): ``kinetic_energy() + dissipated_energy()`` stays constant to rounding
+        (while no immovable disk moves)."""
+        return float(self._acc[_layout.A_DISSIPATED])
 
     def momentum(self) -> np.ndarray:
         """Total momentum of the movable disks, shape (2,)."""
@@ -628,6 +723,19 @@ class Simulation:
              int(self._log_e[m, 1]), int(self._log_e[m, 2]))
             for m in range(k)
         ]
+
+
+def _build_model(species, restitution, wall_restitution, tc, rad, vel):
+    """Validate the physics keywords; ``(species, model)``: the species in user order
+    (int32) and the :class:`~edmd2d.models.Restitution` model, or ``None`` for elastic
+    disks (the engine's default path)."""
+    spec = _models.as_species(species, len(rad))
+    table = _models.restitution_table(restitution, int(spec.max()) + 1)
+    wall = _models.wall_coefficient(wall_restitution)
+    tc = _models.default_tc(rad, vel) if tc is None else _models.tc_value(tc)
+    if (table == 1.0).all() and wall == 1.0:
+        return spec, None
+    return spec, _models.Restitution(table, wall, tc, spec)
 
 
 def _as_walls(walls) -> list[Wall]:

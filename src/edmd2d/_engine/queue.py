@@ -77,6 +77,7 @@ ORIGIN, INVW = 0, 1
 N_QF = 2
 
 TARGET_PER_BUCKET = 2.0
+_MAX_INVW = 1e300  # (finite: see _replace_all)
 _RETUNE_FACTOR = 8.0
 
 
@@ -273,7 +274,13 @@ def prefetch_update(i, t, ql, qhead, qs, qf):
 @kernel
 def _replace_all(invw, qt, ql, hv, qhead, qs, qf):
     """Re-place every queued event with bucket width ``1 / invw``, bucket 0 starting at
-    the earliest of them."""
+    the earliest of them.
+
+    ``invw`` is capped at ``_MAX_INVW``: when the clock stops advancing (events piling
+    up at one time, as in an inelastic collapse) every retune widens it, and an
+    infinite one would make ``(t - origin) * invw`` a NaN (``0 * inf``), which no
+    bucket holds."""
+    invw = min(invw, _MAX_INVW)
     n = qt.shape[0]
     t0 = INF
     for i in range(n):

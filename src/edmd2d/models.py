@@ -1,0 +1,160 @@
+"""Physics models beyond elastic hard disks.
+
+A model changes what a contact does (and, in later models, how disks fly or grow).
+:class:`edmd2d.Simulation` builds its model from its keywords (``restitution=``,
+``wall_restitution=``, ``tc=``); elastic disks need none and run the engine's default
+(fastest) path.  A model holds its parameters and any per-disk state it needs (kept in
+the engine's internal row order: :meth:`Restitution.permuted` follows the engine's
+re-sorts), and hands the compiled engine one tuple (:meth:`Restitution.engine_params`),
+whose functions are in ``_engine/response.py``.
+
+Restitution and the TC model
+----------------------------
+In a collision the normal relative velocity ``vn`` of the two disks (or of a disk and a
+wall) is reversed and multiplied by the coefficient of normal restitution ``e``
+(``0 < e <= 1``); the tangential velocity is unchanged (smooth disks).  A pair of disks
+loses ``(1 - e^2) mu vn^2 / 2`` of kinetic energy, ``mu`` the reduced mass.
+
+With ``e < 1`` a group of disks can undergo *inelastic collapse*: infinitely many
+collisions in a finite time (for example a row of disks squeezed together), which no
+event-driven simulation can process.  The TC model of Luding and McNamara (Granular
+Matter 1, 113 (1998)) prevents it: a collision is elastic when one of the (movable)
+disks involved already collided less than ``tc`` ago.  ``tc`` is read as the duration
+of a contact; it should be much shorter than the mean free time, so that the gas's
+dissipation is unaffected, yet long enough to end every collapse: the default is
+``1e-5`` of the time a disk of mean diameter needs to cross that diameter at the
+initial root-mean-square speed.  Immovable disks act as walls for this rule.
+
+With ``tc = 0`` a collapse is not prevented: the engine then stops the run with a
+``RuntimeError`` naming the disks involved once a disk has collided
+``STALL_COLLISIONS`` times in a row at the same time to within rounding (the state
+stays as it was before that event; a larger ``tc`` lets the run go on).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+
+import numpy as np
+
+from ._engine import response as _response
+from ._validate import as_float_array
+
+__all__ = ["Restitution", "STALL_COLLISIONS", "default_tc"]
+
+STALL_COLLISIONS = _response.STALL_COLLISIONS
+
+
+def default_tc(radii: np.ndarray, velocities: np.ndarray) -> float:
+    """The default TC-model duration: ``1e-5 * d / v_rms`` (``d`` the mean diameter,
+    ``v_rms`` the root-mean-square speed; ``1e-5 * d`` time units if all disks rest)."""
+    d = 2.0 * float(np.mean(radii))
+    v = math.sqrt(float(np.mean(np.einsum("ij,ij->i", velocities, velocities))))
+    return 1e-5 * d / v if v > 0.0 else 1e-5 * d
+
+
+class Restitution:
+    """Inelastic disks: coefficients of normal restitution and the TC model.
+
+    Parameters
+    ----------
+    table : array_like, shape (S, S)
+        Coefficient for each pair of species, symmetric, each in ``(0, 1]``.
+    wall : float
+        Coefficient against box walls and wall segments, in ``(0, 1]``.
+    tc : float
+        TC-model duration, ``>= 0`` (see the module notes).
+    species : array_like of int, shape (N,)
+        Each disk's species, in the engine's internal row order.
+
+    Attributes
+    ----------
+    t_last : ndarray, shape (N,)
+        Time of each disk's last collision (``-inf`` before its first).
+    streak : ndarray, shape (N,)
+        Each disk's collisions in a row at the same time to within rounding.
+    """
+
+    def __init__(self, table: np.ndarray, wall: float, tc: float, species: np.ndarray):
+        self.table = np.ascontiguousarray(table, np.float64)
+        self.wall = float(wall)
+        self.tc = float(tc)
+        self.species = np.ascontiguousarray(species, np.int32)
+        n = len(self.species)
+        self.t_last = np.full(n, -np.inf)
+        self.streak = np.zeros(n, np.int64)
+
+    def engine_params(self) -> tuple:
+        """The tuple the compiled engine reads (see ``_engine/response.py``)."""
+        return (self.table, self.species, self.wall, self.tc, self.t_last, self.streak)
+
+    def permuted(self, perm: np.ndarray) -> Restitution:
+        """A copy that follows a re-sort of the engine's rows (new row ``k`` is old row
+        ``perm[k]``); ``self`` is left as it was."""
+        new = copy.copy(self)
+        new.species = np.ascontiguousarray(self.species[perm])
+        new.t_last = np.ascontiguousarray(self.t_last[perm])
+        new.streak = np.ascontiguousarray(self.streak[perm])
+        return new
+
+    def __repr__(self) -> str:
+        coeff = (f"{self.table[0, 0]:g}" if self.table.size == 1
+                 else f"table of {self.table.shape[0]} species")
+        return f"Restitution(e={coeff}, wall={self.wall:g}, tc={self.tc:g})"
+
+
+def restitution_table(value, n_species: int) -> np.ndarray:
+    """Validate ``restitution``: a scalar or an ``(S, S)`` symmetric table, each entry
+    in ``(0, 1]``, with ``S`` the number of species; returns the ``(S, S)`` table."""
+    arr = np.asarray(value, dtype=object)
+    if arr.ndim == 0:
+        e = float(as_float_array("restitution", value, ()))
+        if not 0.0 < e <= 1.0:
+            raise ValueError(f"restitution must lie in (0, 1], got {e}")
+        return np.full((n_species, n_species), e)
+    table = as_float_array("restitution", value, (n_species, n_species))
+    bad = ~((table > 0.0) & (table <= 1.0))
+    if bad.any():
+        a, b = np.argwhere(bad)[0]
+        raise ValueError(f"restitution[{a}, {b}] = {table[a, b]} is outside (0, 1]")
+    if not np.array_equal(table, table.T):
+        a, b = np.argwhere(table != table.T)[0]
+        raise ValueError(
+            f"restitution must be symmetric: restitution[{a}, {b}] = {table[a, b]} but "
+            f"restitution[{b}, {a}] = {table[b, a]}"
+        )
+    return table
+
+
+def wall_coefficient(value) -> float:
+    """Validate ``wall_restitution``: a scalar in ``(0, 1]``."""
+    e = float(as_float_array("wall_restitution", value, ()))
+    if not 0.0 < e <= 1.0:
+        raise ValueError(f"wall_restitution must lie in (0, 1], got {e}")
+    return e
+
+
+def tc_value(value) -> float:
+    """Validate ``tc``: a finite scalar ``>= 0``."""
+    tc = float(as_float_array("tc", value, ()))
+    if not tc >= 0.0:
+        raise ValueError(f"tc must be >= 0, got {tc}")
+    return tc
+
+
+def as_species(value, n: int) -> np.ndarray:
+    """Validate ``species``: ``None`` (all 0) or ``n`` integers ``>= 0``."""
+    if value is None:
+        return np.zeros(n, np.int32)
+    arr = np.asarray(value)
+    if arr.shape != (n,):
+        raise ValueError(f"species must have shape ({n},) (one per disk), got {arr.shape}")
+    if arr.dtype.kind not in "iub":
+        if arr.dtype.kind != "f" or not np.all(np.isfinite(arr)) or np.any(arr != np.round(arr)):
+            raise TypeError(f"species must be integers, got dtype {arr.dtype}")
+    arr = arr.astype(np.int64)
+    if (arr < 0).any():
+        raise ValueError(f"species must be >= 0; disk {int(np.argmax(arr < 0))} has "
+                         f"{int(arr[arr < 0][0])}")
+    return arr.astype(np.int32)

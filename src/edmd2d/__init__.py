@@ -7,7 +7,7 @@
 1
 """
 
-from . import theory
+from . import models, theory
 from .analysis import (
     hexatic_order,
     maxwell_boltzmann_test,
@@ -18,12 +18,12 @@ from .analysis import (
 )
 from .builders import lattice_packing_limit, make_gas
 from .geometry import Box, Wall
-from .measurements import Measurement, kinetic_temperature, measure
+from .measurements import Cooling, Measurement, cooling, kinetic_temperature, measure
 from .simulation import Counts, Simulation
 
 __all__ = [
     "Box", "Wall", "Simulation", "Counts", "make_gas", "lattice_packing_limit",
-    "measure", "Measurement", "kinetic_temperature",
+    "measure", "Measurement", "kinetic_temperature", "cooling", "Cooling", "models",
     "radial_distribution", "speed_distribution", "maxwell_boltzmann_test",
     "trajectory", "mean_squared_displacement", "hexatic_order",
     "theory",

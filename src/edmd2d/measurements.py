@@ -15,7 +15,8 @@ import numpy as np
 
 from ._validate import as_count, as_positive_float
 
-__all__ = ["Measurement", "measure", "kinetic_temperature", "degrees_of_freedom"]
+__all__ = ["Measurement", "measure", "kinetic_temperature", "degrees_of_freedom", "Cooling",
+           "cooling"]
 
 
 @dataclass(frozen=True)
@@ -378,3 +379,78 @@ def _stderr(values: np.ndarray) -> float:
     if len(values) < 2:
         return math.nan
     return float(np.std(values, ddof=1) / math.sqrt(len(values)))
+
+
+@dataclass(frozen=True)
+class Cooling:
+    """Results of :func:`cooling`: a cooling (inelastic) gas sampled at given times.
+
+    Attributes
+    ----------
+    time : ndarray, shape (K,)
+        The sampling times (the first is the start).
+    collisions_per_disk : ndarray, shape (K,)
+        Disk-disk collisions per disk since the start, ``2 C / N_all`` (every
+        collision involves two disks).
+    kinetic_energy : ndarray, shape (K,)
+        Total kinetic energy of the movable disks.
+    temperature : ndarray, shape (K,)
+        Granular temperature, the kinetic temperature ``kT`` of
+        :func:`kinetic_temperature` (mean kinetic energy per degree of freedom, with
+        the conserved centre-of-mass motion left out).
+    dissipated_energy : ndarray, shape (K,)
+        Kinetic energy lost in collisions since the start.
+    """
+
+    time: np.ndarray
+    collisions_per_disk: np.ndarray
+    kinetic_energy: np.ndarray
+    temperature: np.ndarray
+    dissipated_energy: np.ndarray
+
+
+def cooling(sim, times) -> Cooling:
+    """Run ``sim`` through the increasing ``times`` and sample how it cools.
+
+    Parameters
+    ----------
+    sim : Simulation
+        Advanced in place to ``times[-1]``.
+    times : array_like, shape (K,)
+        Increasing sampling times, the first not before ``sim.time`` (the run goes
+        there first).
+
+    Returns
+    -------
+    Cooling
+        Time, collisions per disk, kinetic energy, granular temperature and
+        dissipated energy at each sampling time.  For a homogeneous gas of
+        restitution ``e``, ``T = T0 exp(-(1 - e^2) C / 2)`` against the collisions per
+        disk ``C`` and Haff's law ``T = T0 / (1 + t / t0)^2`` against time (see
+        ``docs/restitution.md``).
+
+    Raises
+    ------
+    ValueError
+        If ``times`` is empty, not increasing or starts before ``sim.time``.
+    """
+    t = np.asarray(times, dtype=float)
+    if t.ndim != 1 or len(t) == 0 or not np.all(np.isfinite(t)):
+        raise ValueError(f"times must be a non-empty 1-D array of finite times, got {times!r}")
+    if np.any(np.diff(t) <= 0):
+        raise ValueError("times must be strictly increasing")
+    if t[0] < sim.time:
+        raise ValueError(f"times start at {t[0]}, before the simulation's time {sim.time}")
+    n_all = sim.n
+    rows = []
+    c0 = e0 = None
+    for tk in t:
+        sim.advance(until=float(tk))
+        c, lost = sim.counts.collisions, sim.dissipated_energy()
+        if c0 is None:
+            c0, e0 = c, lost
+        rows.append((2.0 * (c - c0) / n_all, sim.kinetic_energy(), kinetic_temperature(sim),
+                     lost - e0))
+    cols = np.array(rows).T
+    return Cooling(t.copy(), cols[0], cols[1], cols[2], cols[3])
+

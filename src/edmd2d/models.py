@@ -105,15 +105,22 @@ class Restitution:
 
 
 def restitution_table(value, n_species: int) -> np.ndarray:
-    """Validate ``restitution``: a scalar or an ``(S, S)`` symmetric table, each entry
-    in ``(0, 1]``, with ``S`` the number of species; returns the ``(S, S)`` table."""
+    """Validate ``restitution``: a scalar or an ``(S, S)`` symmetric table (``S`` at
+    least ``n_species``), each entry in ``(0, 1]``; returns the table."""
     arr = np.asarray(value, dtype=object)
     if arr.ndim == 0:
         e = float(as_float_array("restitution", value, ()))
         if not 0.0 < e <= 1.0:
             raise ValueError(f"restitution must lie in (0, 1], got {e}")
         return np.full((n_species, n_species), e)
-    table = as_float_array("restitution", value, (n_species, n_species))
+    table = np.asarray(value, dtype=float) if arr.ndim == 2 else None
+    if table is None or table.shape[0] != table.shape[1]:
+        raise ValueError(f"restitution must be a scalar or a square (S, S) table, got "
+                         f"shape {arr.shape}")
+    if table.shape[0] < n_species:
+        raise ValueError(f"restitution is a table for {table.shape[0]} species, but the "
+                         f"disks have {n_species} species (0 to {n_species - 1})")
+    table = as_float_array("restitution", table, table.shape)
     bad = ~((table > 0.0) & (table <= 1.0))
     if bad.any():
         a, b = np.argwhere(bad)[0]

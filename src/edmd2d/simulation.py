@@ -552,7 +552,7 @@ class Simulation:
                 f"collide again at the same time, after {_models.STALL_COLLISIONS} "
                 f"collisions in a row that took no time (disks involved: "
                 f"{indices_where(np.isin(np.arange(len(self)), involved))}); the run would "
-                f"need unboundedly many events.  Use the TC model (tc > 0, "
+                f"need unboundedly many events. Use the TC model (tc > 0, "
                 f"now {self._model.tc}) to end the collapse. {stopped}"
             )
         return RuntimeError(f"internal error: engine returned status {status}")  # pragma: no cover

@@ -17,8 +17,8 @@ The timed call is ``advance(collisions=k * N)`` on ``make_gas(N, 0.5, seed=1)`` 
 Several sizes (with one ``k`` each, or one for all) alternate too, inside each round;
 the summary then gives, per version, how many times slower a collision is at each size
 than at the first, from the two sizes' maxima *of the same round* (the drift between
-rounds cancels), with the median and range over the rounds.  This is issue 5's scaling
-target, the cost at N = 10^6 against N = 10^4::
+rounds cancels), with the median and range over the rounds.  For the cost of a
+collision at N = 10^6 against N = 10^4::
 
     python benchmarks/ab.py --n 10000,1000000 --k 10,2 --reps 4 --rounds 5 main
 """

@@ -9,18 +9,16 @@ runs the kernels as plain Python.
 Hot kernels that allocate nothing are decorated with :func:`kernel` instead: the same
 settings with numba's reference counting (NRT) switched off.  With it on, every call
 between compiled functions increments and decrements the reference count of each array
-argument with an atomic (``lock``-prefixed) instruction; the event loop passes about
-twenty arrays per prediction, and a profile at N = 10^4 put 18% of the run time in
-those two runtime functions.  Switching them off measured 1.02 -> 1.22 M collisions/s.
+argument with an atomic (``lock``-prefixed) instruction, and the event loop passes
+about twenty arrays per prediction (the cost measured is in docs/performance-notes.md).
 A function without NRT must not create arrays (``np.empty``, slices returned to the
 caller and the like); such functions keep :func:`njit`.
 
 Inlining: numba's ``inline="always"`` inlines at the level of numba's own IR, and every
 such site reruns whole-function passes (SSA, liveness, type inference) over the caller.
 Small scalar helpers (contact times, cell neighbours) are therefore plain :func:`njit`
-functions, which LLVM inlines into the event loop by itself: compiling the loop took
-about 8.5 s with them marked ``inline="always"`` and about 4.7 s without, for a speed
-within 1-2 % (N = 10^4, alternating runs).  ``inline="always"`` is kept for helpers
+functions, which LLVM inlines into the event loop by itself, at a fraction of the
+compile time and the same speed.  ``inline="always"`` is kept for helpers
 that take many arrays (where a call would pass each array as a struct) and for the
 single prediction site of the loop.
 

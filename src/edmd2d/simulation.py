@@ -408,8 +408,8 @@ class Simulation:
         so an interrupt cannot leave them half permuted.  The queue is rebuilt rather than
         renumbered, which keeps its tie order (time, then internal index) exact.
         """
-        # (The cells' Morton ranks are recomputed each time, about 40 ms at N = 10^6
-        # every 20 N events, rather than held: 6 bytes a disk less.)
+        # (The cells' Morton ranks are recomputed each time rather than held: a few
+        # bytes a disk less for a small cost every 20 N events.)
         rank = _grid.morton_rank(int(self._gi[0]), int(self._gi[1]))
         perm = _grid.order_by_cell(self._E[:, _layout.CELL], rank, len(rank))
         inv = np.empty_like(perm)

@@ -28,8 +28,8 @@ _AHEAD = 5
 def _prefetch_cells(c, ox0, ox1, oy0, oy1, heads, S, gi, head):
     """Prefetch for the cells at offsets ``[ox0, ox1] x [oy0, oy1]`` from cell ``c``
     their list heads (``heads``), or else the state row (with its list link) of their
-    first disks.  A block that crosses an edge of the grid is left out (a hint may miss:
-    0.3 % of the cells at N = 10^6), which spares the wrapping arithmetic."""
+    first disks.  A block that crosses an edge of the grid is left out (a hint may
+    miss), which spares the wrapping arithmetic."""
     ncx = gi[0]
     cy = c // ncx
     cx = c - cy * ncx
@@ -102,16 +102,12 @@ def _lookahead_bucket(b, cur, first, S, E, qt, tc, gi, head, qhead, mask):
     it is walked from ``first`` (-1: none), also from a bucket stepped over.  At
     ``d = 0`` the third to sixth disks of that list get one stage more (the third its
     last), which a list of 2-3 events (the calendar's target) would otherwise never
-    give them: +3-6 % at N = 10^6, where the scan had waited on their neighbours'
-    rows.  Whatever stages the later disks of a long list still lack,
+    give them.  Whatever stages the later disks of a long list still lack,
     :func:`stage_heap` gives them while the bucket's earlier events are processed.
 
     Stage 0, the disk's bookkeeping row (which holds its list link and queue time),
     is requested here; stages 1-3 by :func:`_stage`.  (Stages 4 and 5, reached by the
     first disks of the nearest lists, have nothing left to fetch.)
-
-    (Measured at N = 10^6 against prefetching also the second disks of the cells, and
-    against wrapping at the grid's edges: both cost more than they saved.)
     """
     for d in range(_AHEAD, -1, -1):
         if b + d == cur:
@@ -190,10 +186,7 @@ def stage_heap(S, E, qt, tc, gi, head, hv, nheap):
     a list never gets stage 3, the fifth neither 2 nor 3, and an event that joins the
     current bucket none.  Called at each event of a bucket after its first (the
     lookahead's turn), this gives them one stage per event, each finding in the caches
-    what the previous one requested.  At N = 10^6 the neighbour rows that predictions
-    found neither fetched nor used in the last 16 000 events fell from 1.55 to 0.95
-    per collision, and with :func:`lookahead`'s steps over empty buckets to 0.83
-    (of 12.2 scanned); the speed rose by 6-7 % (each change alone: 2-3 %).
+    what the previous one requested.
     """
     for slot in range(1, min(nheap, _HEAP_STAGED)):
         h = hv[slot]

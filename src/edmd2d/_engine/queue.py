@@ -6,8 +6,8 @@ current *year*, ``qs[CUR] <= b < qs[CUR] + nb`` with ``nb`` a power of two, are 
 unsorted doubly linked lists (list ``b mod nb``); later events wait in one overflow
 list.  Only the current bucket is kept sorted, as a small binary heap.  Inserting or
 removing an event is then O(1) (a list link, or a heap of a few entries) instead of a
-walk down a heap of ``N`` entries: at N = 10^4 the 4-ary heap this replaces took 28% of
-the run time, mostly mispredicted branches, and at N = 10^6 also cache misses.
+walk down a heap of ``N`` entries, with its mispredicted branches and, at large N,
+cache misses.
 
 The order of events is exact: buckets partition time, and inside the current bucket
 the heap orders by ``(time, disk index)``, the same tie rule as before, so simultaneous
@@ -66,11 +66,8 @@ N_QL = N_E
 # it means something only right after the ``top`` that set it.
 CUR, NHEAP, NLIST, NOVER, MASK, BOUNDARY, LOADED, ADVANCED, LOOKAHEAD, FIRST = range(10)
 N_QS = 10
-# From this many disks on the working set has left the caches and the lookahead pays.
-# Measured in one process with it off and on in turn (medians of 10-14 pairs): +32-34 %
-# at N = 10^6, +18 % at 10^5 (an earlier variant), +13 % at 4.5x10^4; at 3x10^4 +1 %,
-# +15 % and +32 % in three runs (the last two while other tenants competed for
-# memory); below, overhead: -6.5 % at 2.4x10^4, -8 % at 2x10^4, -16 % at 10^4.
+# From this many disks on the working set has left the caches and the lookahead pays;
+# below, it costs more than it saves (measured in docs/performance-notes.md).
 LOOKAHEAD_MIN_DISKS = 2 ** 15
 # qf: time origin of bucket 0, inverse bucket width
 ORIGIN, INVW = 0, 1

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 
-from .._jit import kernel, njit
+from .._jit import njit
 from .layout import (
     A_BOX,
     A_DISSIPATED,
@@ -111,7 +111,7 @@ def _note_collision(i, t, invm, model):
         t_last[i] = t
 
 
-@kernel
+@njit(inline="always")
 def collide_pair(i, j, t, aux, S, invm, acc, gf, model):
     """Resolve the contact of disks ``i`` and ``j`` (both at time ``t``; ``j`` seen
     through the periodic image shift ``aux``), and add its impulse to the collision
@@ -139,7 +139,7 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, model):
     _note_collision(j, t, invm, model)
 
 
-@kernel
+@njit(inline="always")
 def collide_wall(i, t, kind, partner, aux, S, invm, acc, gf, wa, wb, model):
     """Resolve the contact of disk ``i`` (at time ``t``) with box wall ``aux`` (``kind``
     BOX: x=0, x=width, y=0, y=height) or with the wall segment ``partner`` (its side or

@@ -220,7 +220,9 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                     redo0 = i
                     redo1 = j
             elif kind == SEGMENT or kind == BOX:
-                if invm[i] == 0.0 or response.stalls(i, -1, t, invm, model):
+                # (stalls(i, i, ...): a wall has no streak of its own; passing i again,
+                # not a literal -1, spares a second compiled copy.)
+                if invm[i] == 0.0 or response.stalls(i, i, t, invm, model):
                     info[0] = i
                     info[1] = partner if kind == SEGMENT else -1 - aux
                     status = ERR_IMMOVABLE_WALL if invm[i] == 0.0 else ERR_STALLED

@@ -86,9 +86,9 @@ def _simultaneous(t, before):
 
 @njit
 def stalls(i, j, t, invm, model):
-    """Whether the collision of disk ``i`` with disk ``j`` (``-1``: a wall) at time
-    ``t`` would make a streak of ``STALL_COLLISIONS`` simultaneous collisions: the
-    run must stop (an inelastic collapse).  Never for elastic disks."""
+    """Whether the collision of disk ``i`` with disk ``j`` (``j = i`` or ``-1``: a
+    wall) at time ``t`` would make a streak of ``STALL_COLLISIONS`` simultaneous
+    collisions: the run must stop (an inelastic collapse).  Never for elastic disks."""
     if model is None:
         return False
     t_last = model[4]

@@ -7,6 +7,7 @@ import importlib
 import pathlib
 import re
 
+import numpy as np
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
@@ -40,6 +41,20 @@ def test_readme_measuring_example_runs(capsys):
     # The README quotes Z = 4.10 +- 0.01 for this run; Henderson's 4.125 is within 3%.
     assert abs(m.compressibility_factor - 4.125) < 0.12
     assert "compressibility" in capsys.readouterr().out
+
+
+def test_readme_inelastic_example_runs(capsys):
+    text = (ROOT / "README.md").read_text()
+    block = next(b for b in re.findall(r"```python\n(.*?)```", text, re.S) if "cooling(" in b)
+    namespace: dict = {}
+    exec(compile(block, "README.md", "exec"), namespace)
+    sim, gas, c = namespace["sim"], namespace["gas"], namespace["c"]
+    assert sim.kinetic_energy() + sim.dissipated_energy() == pytest.approx(
+        gas.kinetic_energy(), rel=1e-12)
+    # The README says T ends 1.5 % above the exponential law at C = 16.4 (within 4 %).
+    law = np.exp(-(1 - 0.9 ** 2) * c.collisions_per_disk[-1] / 2)
+    assert c.temperature[-1] / c.temperature[0] == pytest.approx(law, rel=0.04)
+    assert c.collisions_per_disk[-1] > 10 and "exp law" in capsys.readouterr().out
 
 
 def test_viz_is_lazy():

@@ -40,3 +40,13 @@ def test_eos_table_runs(capsys):
     module.table(200, 20_000, etas=(0.3,))
     text = capsys.readouterr().out
     assert "Z measured" in text and "collision rate" in text
+
+
+def test_granular_cooling_example_writes_its_animation(tmp_path, capsys):
+    module = load("granular_cooling")
+    module.N, module.DURATION = 400, 20.0
+    out = tmp_path / "granular_cooling.gif"
+    module.main(out)
+    assert out.stat().st_size > 10_000 and out.with_suffix(".png").stat().st_size > 10_000
+    text = capsys.readouterr().out
+    assert "collisions/disk" in text and "wrote" in text

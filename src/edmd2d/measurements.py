@@ -426,7 +426,7 @@ def cooling(sim, times) -> Cooling:
         Time, collisions per disk, kinetic energy, granular temperature and
         dissipated energy at each sampling time.  For a homogeneous gas of
         restitution ``e``, ``T = T0 exp(-(1 - e^2) C / 2)`` against the collisions per
-        disk ``C`` and Haff's law ``T = T0 / (1 + t / t0)^2`` against time (see
+        disk ``C`` and Haff's law ``T = T0 / (1 + t / t_H)^2`` against time (see
         ``docs/restitution.md``).
 
     Raises

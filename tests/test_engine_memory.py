@@ -51,7 +51,7 @@ def _pinned_mixture(n, seed):
     at rest) and box of a gas with one pair of walls."""
     base = ed.make_gas(n, 0.4, radii=np.where(np.arange(n) % 3, 0.5, 0.6),
                        periodic=(True, False), seed=seed)
-    vel = base.velocities
+    vel = base.velocities.copy()
     mass = np.where(np.arange(n) % 2, 1.0, 3.0)
     mass[::37] = np.inf
     vel[::37] = 0.0

@@ -83,7 +83,7 @@ def test_pegs_and_channel():
     # A channel periodic in x with walls in y, and a row of fixed pegs: energy is
     # conserved, x-momentum is not (the pegs push back), nothing overlaps.
     base = ed.make_gas(800, 0.35, periodic=(True, False), seed=5)
-    p, v = base.positions, base.velocities
+    p, v = base.positions.copy(), base.velocities.copy()
     mass = np.ones(len(p))
     mass[::40] = np.inf
     v[::40] = 0.0
@@ -131,7 +131,7 @@ def test_unwrapped_positions_track_crossings():
 
 def test_very_fast_disks_in_a_gas_do_not_tunnel():
     sim0 = ed.make_gas(400, 0.4, periodic=False, seed=9)
-    v = sim0.velocities
+    v = sim0.velocities.copy()
     v[:5] *= 1e6
     walls = [ed.Wall((0.5 * sim0.box.width, 0.0), (0.5 * sim0.box.width, 0.01))]
     sim = ed.Simulation(sim0.positions, v, sim0.radii, box=sim0.box, walls=walls)

@@ -146,12 +146,15 @@ def test_set_velocities_validates_and_repredicts():
     np.testing.assert_array_equal(sim.positions, p)
 
 
-def test_returned_arrays_are_copies():
+def test_returned_arrays_are_read_only_copies():
+    # An edit of a returned array could not reach the simulation: it fails loudly, and
+    # a copy of it is an ordinary array that leaves the simulation alone.
     sim = make()
-    sim.positions[:] = 0.0
-    sim.velocities[:] = 0.0
-    sim.radii[:] = 0.0
-    sim.masses[:] = 0.0
+    for name in ("positions", "velocities", "radii", "masses"):
+        with pytest.raises(ValueError, match="read-only"):
+            getattr(sim, name)[:] = 0.0
+        edited = getattr(sim, name).copy()
+        edited[:] = 0.0
     assert sim.positions[0, 0] == 2.0 and sim.velocities[0, 0] == 1.0
     assert sim.radii[0] == 0.5 and sim.masses[0] == 1.0
 

@@ -40,8 +40,10 @@ def as_float_array(
     """
     if value is None:
         raise TypeError(f"{name} is required, got None")
-    if isinstance(value, (str, bytes)):
-        raise TypeError(f"{name} must be numeric, got {type(value).__name__} {value!r}")
+    if isinstance(value, (str, bytes)) or np.asarray(value).dtype.kind in "USa":
+        # (numpy would parse strings nested in lists; refused everywhere alike)
+        shown = value if isinstance(value, (str, bytes)) else np.asarray(value)
+        raise TypeError(f"{name} must be numeric, got strings: {shown!r}")
     try:
         arr = np.array(value, dtype=np.float64, order="C", copy=True)
     except (TypeError, ValueError) as exc:
@@ -56,8 +58,10 @@ def as_float_array(
     bad = np.isnan(arr) if allow_inf else ~np.isfinite(arr)
     if bad.any():
         what = "NaN" if allow_inf else "NaN or infinite"
-        where = indices_where(bad) if arr.ndim >= 1 and len(arr) else ""
-        raise ValueError(f"{name} contains {what} values at indices {where}")
+        if arr.ndim == 0:
+            raise ValueError(f"{name} contains {what} values: got {float(arr)}, need a "
+                             "finite number")
+        raise ValueError(f"{name} contains {what} values at indices {indices_where(bad)}")
     return arr
 
 

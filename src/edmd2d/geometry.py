@@ -88,7 +88,8 @@ class Wall:
         a = as_float_array("Wall start", start, (2,))
         b = as_float_array("Wall end", end, (2,))
         if np.hypot(*(b - a)) == 0.0:
-            raise ValueError(f"Wall is degenerate: start and end are both {tuple(a)}")
+            raise ValueError(f"Wall is degenerate: start and end are both "
+                             f"({float(a[0])!r}, {float(a[1])!r})")
         object.__setattr__(self, "start", (float(a[0]), float(a[1])))
         object.__setattr__(self, "end", (float(b[0]), float(b[1])))
 
@@ -101,15 +102,23 @@ class Wall:
     def polygon(cls, vertices, closed: bool = True) -> list[Wall]:
         """Walls along a polyline through ``vertices`` (closed by default).
 
+        A closed polygon needs at least 3 vertices, an open polyline at least 2.
+
         Examples
         --------
         >>> len(Wall.polygon([(1, 1), (9, 1), (5, 8)]))
         3
         """
         pts = as_float_array("polygon vertices", vertices, (None, 2))
-        if len(pts) < 2:
-            raise ValueError(f"polygon needs at least 2 vertices, got {len(pts)}")
+        need = 3 if closed else 2
+        if len(pts) < need:
+            raise ValueError(
+                f"a {'closed polygon' if closed else 'polyline'} needs at least {need} "
+                f"vertices, got {len(pts)}"
+                + (" (for a single segment use Wall(start, end), or closed=False)"
+                   if closed and len(pts) == 2 else "")
+            )
         pairs = list(zip(pts[:-1], pts[1:]))
-        if closed and len(pts) > 2:
+        if closed:
             pairs.append((pts[-1], pts[0]))
         return [cls(a, b) for a, b in pairs]

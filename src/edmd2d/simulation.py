@@ -223,6 +223,7 @@ class Simulation:
         else:
             self._wa = np.zeros((0, 2))
             self._wb = np.zeros((0, 2))
+        self._cell_size = cell_size
         self._build_grid(pos, dmax, cell_size)
         self._check_overlaps(pos, rad)
 
@@ -378,6 +379,7 @@ class Simulation:
         # no accumulated dissipation.
         state.setdefault("_model", None)
         state.setdefault("_species", None)
+        state.setdefault("_cell_size", None)
         acc = state["_acc"]
         if len(acc) < _layout.N_ACC:
             state["_acc"] = np.concatenate([acc, np.zeros(_layout.N_ACC - len(acc))])
@@ -436,9 +438,11 @@ class Simulation:
                           _model=model, _since_reorder=0)
 
     def _to_user(self, internal: np.ndarray) -> np.ndarray:
-        """Rows in the user's disk order (a new array)."""
+        """Rows in the user's disk order: a new, read-only array (editing it could not
+        change the simulation, so an edit fails instead of passing silently)."""
         out = np.empty_like(internal)
         out[self._order] = internal
+        out.flags.writeable = False
         return out
 
     def _predict_all(self) -> None:
@@ -584,6 +588,10 @@ class Simulation:
         _flight.synchronized_positions(self._time, self._S, self._gi, self._gf, out)
         return self._to_user(out)
 
+    @positions.setter
+    def positions(self, positions) -> None:
+        self.set_positions(positions)
+
     @property
     def unwrapped_positions(self) -> np.ndarray:
         """Disk centres at :attr:`time` with periodic wraps undone, shape (N, 2).
@@ -612,9 +620,10 @@ class Simulation:
     @property
     def species(self) -> np.ndarray:
         """Each disk's species (int), shape (N,), a copy; all 0 unless given."""
-        if self._species is None:
-            return np.zeros(len(self), np.int32)
-        return self._species.copy()
+        out = (np.zeros(len(self), np.int32) if self._species is None
+               else self._species.copy())
+        out.flags.writeable = False
+        return out
 
     @property
     def restitution(self) -> np.ndarray:
@@ -622,8 +631,11 @@ class Simulation:
         a copy (all 1 for elastic disks)."""
         if self._model is None:
             n_species = int(self.species.max()) + 1
-            return np.ones((n_species, n_species))
-        return self._model.table.copy()
+            out = np.ones((n_species, n_species))
+        else:
+            out = self._model.table.copy()
+        out.flags.writeable = False
+        return out
 
     @property
     def wall_restitution(self) -> float:
@@ -669,6 +681,42 @@ class Simulation:
         """Total momentum of the movable disks, shape (2,)."""
         movable = self._invm > 0
         return self._mass[movable] @ self._S[movable, _layout.VX:_layout.VY + 1]
+
+    def set_positions(self, positions) -> None:
+        """Move every disk to new positions at the current time (``sim.positions = ...``
+        does the same).
+
+        Parameters
+        ----------
+        positions : array_like, shape (N, 2)
+            The new centres, checked as the constructor checks them: inside the box,
+            no overlap between disks, with their periodic images or with a wall.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For bad input, naming the offending disks; the simulation is left
+            unchanged.
+
+        Notes
+        -----
+        Velocities, counts, accumulated impulses and the clock are kept; the grid and
+        every predicted event are rebuilt, and :attr:`unwrapped_positions` start
+        afresh from the new positions.
+        """
+        pos = np.array(as_float_array("positions", positions, (len(self), 2)))
+        # The constructor's checks, on a throwaway simulation of the same disks: it
+        # refuses what the constructor refuses, and nothing of self changes until
+        # they have passed.
+        Simulation(pos, self.velocities, self.radii, self.masses, box=self._box,
+                   walls=self._walls, time=self._time, cell_size=self._cell_size)
+        pos = self._check_in_box(pos, self.radii)  # (x = width becomes 0 if periodic)
+        self._sync_all()
+        self._S[:, _layout.X:_layout.Y + 1] = pos[self._order]
+        self._image[:] = 0
+        dmax = 2.0 * float(self._S[:, _layout.R].max())
+        self._build_grid(self._S[:, _layout.X:_layout.Y + 1], dmax, self._cell_size)
+        self._predict_all()
 
     def set_velocities(self, velocities) -> None:
         """Replace all velocities at the current time (e.g. to rescale the temperature).

@@ -42,7 +42,14 @@ from collections import deque
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
-import matplotlib as mpl
+try:
+    import matplotlib as mpl
+except ModuleNotFoundError as exc:  # (an optional dependency: say which extra brings it)
+    raise ModuleNotFoundError(
+        "edmd2d.viz needs matplotlib, which is not installed: pip install 'edmd2d[viz]' "
+        "(or 'edmd2d[video]' for .mp4 output), or pip install matplotlib pillow",
+        name=exc.name,
+    ) from exc
 import matplotlib.animation as manim
 import matplotlib.colors as mcolors
 import matplotlib.pyplot as plt

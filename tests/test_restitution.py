@@ -256,7 +256,7 @@ def test_collapse_is_ended_by_the_tc_model():
     (dict(wall_restitution=2.0), "wall_restitution"),
     (dict(restitution=0.5, tc=-1e-3), "tc must be >= 0"),
     (dict(restitution=0.5, tc=math.nan), "tc"),
-    (dict(species=[0, -1, 0]), "species must be >= 0"),
+    (dict(species=[0, -1, 0]), r"species must lie in 0\.\.1023; disk 1"),
     (dict(species=[0, 1]), r"species must have shape \(3,\)"),
 ])
 def test_bad_input_names_the_argument(kwargs, match):
@@ -316,3 +316,43 @@ def test_resorted_rows_keep_each_disks_species_and_clock():
     assert np.array_equal(resorted.species, np.arange(1500) % 3)
     assert resorted.dissipated_energy() == pytest.approx(plain.dissipated_energy(), rel=1e-9)
     assert resorted.dissipated_energy() > 0
+
+
+def test_species_ids_are_bounded_and_a_scalar_needs_no_table():
+    pos = [[2.0, 2.0], [5.0, 2.0]]
+    box = ed.Box(10.0, 10.0)
+    for bad in ([0, 2 ** 31], [0, 5000]):
+        with pytest.raises(ValueError, match=r"species must lie in 0\.\.1023; disk 1"):
+            ed.Simulation(pos, np.zeros((2, 2)), 0.5, box=box, species=bad, restitution=0.5)
+    with pytest.raises(TypeError, match="species must be integers"):
+        ed.Simulation(pos, np.zeros((2, 2)), 0.5, box=box, species=[True, False])
+    sim = ed.Simulation(pos, [[1.0, 0.0], [-1.0, 0.0]], 0.5, box=box, species=[0, 1000],
+                        restitution=0.5)
+    assert sim.restitution.shape == (1, 1) and list(sim.species) == [0, 1000]
+    sim.advance(collisions=1)
+    np.testing.assert_allclose(sim.velocities, [[-0.5, 0.0], [0.5, 0.0]], atol=1e-15)
+    with pytest.raises(TypeError, match="restitution"):
+        ed.Simulation(pos, np.zeros((2, 2)), 0.5, box=box, species=[0, 1],
+                      restitution=[[0.5, 1j], [1j, 0.5]])
+
+
+def test_no_false_collapse_at_a_late_clock():
+    # Simultaneous means equal to a few units of rounding of the clock, however far
+    # the clock has run: at t = 1e13 (rounding 0.002, mean free time 0.06) a gas that
+    # barely dissipates runs on.
+    g = ed.make_gas(400, 0.7, seed=2)
+    g.advance(collisions=4000)
+    sim = ed.Simulation(g.positions, g.velocities, g.radii, box=g.box, restitution=0.9999,
+                        time=1e13)
+    sim.advance(collisions=300_000)
+    assert sim.counts.collisions == 300_000
+
+
+def test_a_disk_that_fills_the_box_cannot_move_across_it():
+    box = ed.Box(10.0, 1.0, periodic=(True, False))
+    with pytest.raises(ValueError, match="fill the box between its walls on the y axis"):
+        ed.Simulation([[5.0, 0.5]], [[1.0, 0.1]], 0.5, box=box, wall_restitution=0.9)
+    sim = ed.Simulation([[5.0, 0.5]], [[1.0, 0.0]], 0.5, box=box)  # along x only: fine
+    with pytest.raises(ValueError, match="y-velocity must be 0"):
+        sim.set_velocities([[1.0, 0.1]])
+    assert sim.advance(until=20.0).counts.wall_collisions == 0

@@ -1,6 +1,6 @@
 """Physics models beyond elastic hard disks.
 
-A model changes what a contact does (and, in later models, how disks fly or grow).
+A model changes what a contact does to the disks' velocities.
 :class:`edmd2d.Simulation` builds its model from its keywords (``restitution=``,
 ``wall_restitution=``, ``tc=``); elastic disks need none and run the engine's default
 (fastest) path.  A model holds its parameters and any per-disk state it needs (kept in
@@ -44,11 +44,16 @@ from ._validate import as_float_array
 __all__ = ["Restitution", "STALL_COLLISIONS", "default_tc"]
 
 STALL_COLLISIONS = _response.STALL_COLLISIONS
+# Largest species id: a table of coefficients has one row per species up to the largest.
+MAX_SPECIES = 1023
 
 
-def default_tc(radii: np.ndarray, velocities: np.ndarray) -> float:
-    """The default TC-model duration: ``1e-5 * d / v_rms`` (``d`` the mean diameter,
-    ``v_rms`` the root-mean-square speed; ``1e-5 * d`` time units if all disks rest)."""
+def default_tc(radii: np.ndarray, velocities: np.ndarray, movable: np.ndarray) -> float:
+    """The default TC-model duration: ``1e-5 * d / v_rms`` (``d`` the mean diameter
+    and ``v_rms`` the root-mean-square speed of the ``movable`` disks; ``1e-5 * d``
+    time units if they all rest, or over all disks if none can move)."""
+    if movable.any():
+        radii, velocities = radii[movable], velocities[movable]
     d = 2.0 * float(np.mean(radii))
     v = math.sqrt(float(np.mean(np.einsum("ij,ij->i", velocities, velocities))))
     return 1e-5 * d / v if v > 0.0 else 1e-5 * d
@@ -108,12 +113,12 @@ def restitution_table(value, n_species: int) -> np.ndarray:
     """Validate ``restitution``: a scalar or an ``(S, S)`` symmetric table (``S`` at
     least ``n_species``), each entry in ``(0, 1]``; returns the table."""
     arr = np.asarray(value, dtype=object)
-    if arr.ndim == 0:
+    if arr.ndim == 0:  # (as_float_array names the argument for any bad scalar)
         e = float(as_float_array("restitution", value, ()))
         if not 0.0 < e <= 1.0:
             raise ValueError(f"restitution must lie in (0, 1], got {e}")
         return np.full((n_species, n_species), e)
-    table = np.asarray(value, dtype=float) if arr.ndim == 2 else None
+    table = as_float_array("restitution", value, (None, None)) if arr.ndim == 2 else None
     if table is None or table.shape[0] != table.shape[1]:
         raise ValueError(f"restitution must be a scalar or a square (S, S) table, got "
                          f"shape {arr.shape}")
@@ -157,11 +162,11 @@ def as_species(value, n: int) -> np.ndarray:
     arr = np.asarray(value)
     if arr.shape != (n,):
         raise ValueError(f"species must have shape ({n},) (one per disk), got {arr.shape}")
-    if arr.dtype.kind not in "iub":
+    if arr.dtype.kind not in "iu":
         if arr.dtype.kind != "f" or not np.all(np.isfinite(arr)) or np.any(arr != np.round(arr)):
             raise TypeError(f"species must be integers, got dtype {arr.dtype}")
-    arr = arr.astype(np.int64)
-    if (arr < 0).any():
-        raise ValueError(f"species must be >= 0; disk {int(np.argmax(arr < 0))} has "
-                         f"{int(arr[arr < 0][0])}")
+    bad = (arr < 0) | (arr > MAX_SPECIES)
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise ValueError(f"species must lie in 0..{MAX_SPECIES}; disk {k} has {arr[k]}")
     return arr.astype(np.int32)

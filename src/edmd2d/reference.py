@@ -111,7 +111,7 @@ class ReferenceSimulation:
     species : array_like of int, shape (N,), optional
         Species ids ``0 .. S-1`` (default: all 0); they only select ``restitution``.
     restitution : float or array_like, shape (S, S), default 1.0
-        Normal coefficient of restitution ``e`` of disk-disk collisions, 0 <= e <= 1:
+        Normal coefficient of restitution ``e`` of disk-disk collisions, 0 < e <= 1:
         one value, or a symmetric table indexed by the two disks' species.
     wall_restitution : float, default 1.0
         Coefficient ``e_w`` of every collision of a disk with a box wall or a wall

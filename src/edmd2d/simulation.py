@@ -108,8 +108,8 @@ class Simulation:
     wall_restitution : float, default 1.0
         Coefficient of normal restitution against box walls and wall segments.
     tc : float, optional
-        The TC model's duration (``>= 0``): a collision is elastic when a disk
-        involved collided less than ``tc`` ago.  Default ``1e-5`` of the time a disk
+        The TC model's duration (``>= 0``): a collision is elastic when a movable
+        disk involved collided less than ``tc`` ago.  Default ``1e-5`` of the time a disk
         of mean diameter needs to cross it at the initial root-mean-square speed.
         Used only when some coefficient is below 1; ``0`` turns the model off, and a
         run that collapses then stops with a ``RuntimeError``.
@@ -181,6 +181,7 @@ class Simulation:
         self._walls = tuple(wall_list)
         pos = self._check_in_box(pos, rad)
         self._check_walls_in_box()
+        self._check_room(vel, rad)
 
         dmax = 2.0 * float(rad.max())
         for axis, length in (("width", box.width), ("height", box.height)):
@@ -196,7 +197,7 @@ class Simulation:
                 raise ValueError(
                     f"cell_size must be at least the largest diameter {dmax}, got {cell_size}"
                 )
-        model = _build_model(species, restitution, wall_restitution, tc, rad, vel)
+        model = _build_model(species, restitution, wall_restitution, tc, rad, vel, mass)
 
         # Per-disk state and bookkeeping, one 64-byte row each in S and E (see
         # _engine/layout.py for the columns).
@@ -294,6 +295,22 @@ class Simulation:
                         f"on the {name} axis (need radius <= {name} <= {length} - radius)"
                     )
         return pos
+
+    def _check_room(self, vel: np.ndarray, rad: np.ndarray) -> None:
+        """A disk as wide as the box between two walls cannot move across it: it would
+        bounce from wall to wall with no time in between, without end."""
+        box = self._box
+        for axis, length in enumerate((box.width, box.height)):
+            if box.periodic[axis]:
+                continue
+            stuck = (2.0 * rad >= length * (1 - _OVERLAP_TOL)) & (vel[:, axis] != 0.0)
+            if stuck.any():
+                name = "xy"[axis]
+                raise ValueError(
+                    f"velocities: disks {indices_where(stuck)} fill the box between its "
+                    f"walls on the {name} axis (diameter >= {length}) and cannot move "
+                    f"along {name}; their {name}-velocity must be 0"
+                )
 
     def _check_walls_in_box(self) -> None:
         w, h = self._box.width, self._box.height
@@ -551,13 +568,17 @@ class Simulation:
             partner = f"disk {int(self._order[j])}" if kind == _layout.DISK else where
             streak = self._model.streak
             involved = np.sort(self._order[streak >= streak.max() // 10])
+            if self._model.tc > 0.0:
+                advice = (f"The TC model (tc={self._model.tc}) did not end it: a larger tc "
+                          "would, unless the disks are confined with no room to move.")
+            else:
+                advice = "Use the TC model (tc > 0) to end the collapse."
             return RuntimeError(
                 f"inelastic collapse at t={t_bad}: disk {user_i} and {partner} would "
                 f"collide again at the same time, after {_models.STALL_COLLISIONS} "
                 f"collisions in a row that took no time (disks involved: "
                 f"{indices_where(np.isin(np.arange(len(self)), involved))}); the run would "
-                f"need unboundedly many events. Use the TC model (tc > 0, "
-                f"now {self._model.tc}) to end the collapse. {stopped}"
+                f"need unboundedly many events. {advice} {stopped}"
             )
         return RuntimeError(f"internal error: engine returned status {status}")  # pragma: no cover
 
@@ -628,7 +649,8 @@ class Simulation:
     @property
     def restitution(self) -> np.ndarray:
         """Coefficient of normal restitution for each pair of species, shape (S, S),
-        a copy (all 1 for elastic disks)."""
+        a copy: ``(1, 1)`` if one coefficient applies to every pair, all 1 for elastic
+        disks."""
         if self._model is None:
             n_species = int(self.species.max()) + 1
             out = np.ones((n_species, n_species))
@@ -724,6 +746,7 @@ class Simulation:
         All predicted events are recomputed.  Raises like the constructor on bad input.
         """
         vel = as_float_array("velocities", velocities, (len(self), 2))
+        self._check_room(vel, self.radii)
         self._sync_all()
         self._S[:, _layout.VX:_layout.VY + 1] = vel[self._order]
         self._predict_all()  # every event and kept candidate is recomputed
@@ -773,17 +796,20 @@ class Simulation:
         ]
 
 
-def _build_model(species, restitution, wall_restitution, tc, rad, vel):
+def _build_model(species, restitution, wall_restitution, tc, rad, vel, mass):
     """Validate the physics keywords; ``(species, model)``: the species in user order
     (int32) and the :class:`~edmd2d.models.Restitution` model, or ``None`` for elastic
     disks (the engine's default path)."""
     spec = _models.as_species(species, len(rad))
-    table = _models.restitution_table(restitution, int(spec.max()) + 1)
+    scalar = np.ndim(restitution) == 0
+    # (One coefficient for every pair: a 1x1 table that every disk reads as species 0.)
+    table = _models.restitution_table(restitution, 1 if scalar else int(spec.max()) + 1)
     wall = _models.wall_coefficient(wall_restitution)
-    tc = _models.default_tc(rad, vel) if tc is None else _models.tc_value(tc)
+    tc = (_models.default_tc(rad, vel, np.isfinite(mass)) if tc is None
+          else _models.tc_value(tc))
     if (table == 1.0).all() and wall == 1.0:
         return spec, None
-    return spec, _models.Restitution(table, wall, tc, spec)
+    return spec, _models.Restitution(table, wall, tc, np.zeros_like(spec) if scalar else spec)
 
 
 def _as_walls(walls) -> list[Wall]:

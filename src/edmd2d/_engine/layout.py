@@ -9,8 +9,9 @@ links in its grid cell's list (int32).
 
 ``E[i]``, what only disk ``i``'s own events use: its cell, its kept candidate (the best
 event that is not a cell crossing: kind, partner, aux, the partner's stamp and its time
-``tc``), its links and scheduled time ``qt`` in the calendar queue, ``1/mass``, and the
-lookahead's notes of the prefetch stages given to its event (a hint).
+``tc``, the candidate time), its links and scheduled time ``qt`` in the calendar queue,
+``1/mass``, and the lookahead's notes of the prefetch stages given to its event (a
+hint).
 
 Every column is declared below with the table, dtype and index in that dtype's view of
 the table (``S``, ``S.view(np.int32)``, ``E``, ``E.view(np.float64)``); :func:`check`

@@ -10,7 +10,7 @@ walk down a heap of ``N`` entries, with its mispredicted branches and, at large 
 cache misses.
 
 The order of events is exact: buckets partition time, and inside the current bucket
-the heap orders by ``(time, disk index)``, the same tie rule as before, so simultaneous
+the heap orders by ``(time, disk index)``, so simultaneous
 events keep a deterministic order.  Bucket numbers come from one monotonic float
 expression, so an earlier time never lands in a later bucket.
 
@@ -274,9 +274,9 @@ def _replace_all(invw, qt, ql, hv, qhead, qs, qf):
     the earliest of them.
 
     ``invw`` is capped at ``_MAX_INVW``: when the clock stops advancing (events piling
-    up at one time, as in an inelastic collapse) every retune widens it, and an
-    infinite one would make ``(t - origin) * invw`` a NaN (``0 * inf``), which no
-    bucket holds."""
+    up at one time, as in an inelastic collapse) every retune narrows the buckets, and
+    an infinite ``invw`` would make ``(t - origin) * invw`` a NaN (``0 * inf``), which
+    no bucket holds."""
     invw = min(invw, _MAX_INVW)
     n = qt.shape[0]
     t0 = INF

@@ -17,8 +17,8 @@ compiles to the plain elastic formulas), or the restitution model's tuple
 - the TC model (Luding and McNamara 1998): a collision is elastic when a movable disk
   involved collided less than ``tc`` ago; ``t_last[i]``, the time of disk ``i``'s last
   collision (-inf before the first; never set for immovable disks, which act as walls);
-- ``streak[i]``: how many collisions in a row disk ``i`` took part in, each at the
-  same time as its previous one to within a relative ``INSTANT``: an inelastic
+- ``streak[i]``: how many collisions in a row of disk ``i`` each came at the same
+  time as the one before it, to within a relative ``INSTANT``: an inelastic
   collapse that the TC model does not stop (``tc`` = 0) makes a streak grow without
   end, and :func:`stalls` stops the run at ``STALL_COLLISIONS``.
 """
@@ -45,8 +45,9 @@ from .layout import (
 )
 
 # Two collisions of a disk count as simultaneous when their times differ by at most
-# this fraction of the time (a few hundred units of rounding).
-INSTANT = 1e-13
+# this fraction of the time: a few units of rounding (a collapse drives the intervals
+# to zero in floating point; any physical interval is far longer).
+INSTANT = 8.0 * 2.0 ** -52
 # Simultaneous collisions in a row of one disk at which the run stops: a finite
 # number of disks in elastic contact resolve in far fewer.
 STALL_COLLISIONS = 10_000

@@ -4,8 +4,9 @@ A disk's event is the earliest of its candidates: contacts with the disks in its
 neighbour cells, with the wall segments listed for its cell and with the box walls
 (:mod:`.predict` gives each contact time), and leaving its cell.  The best candidate
 that is not a cell crossing is kept in the disk's bookkeeping row (the "kept
-candidate": kind, partner, aux, the partner's stamp, and its time ``tc``); the
-scheduled event is the crossing if it comes first.
+candidate": kind, partner, aux, the partner's stamp, and its time ``tc``, the candidate
+time, not the TC model's duration); the scheduled event is the crossing if it comes
+first.
 
 Why a cell crossing only needs the newly exposed cells: the kept candidate is the
 earliest contact with everything in the old neighbourhood (still exact if its

@@ -294,3 +294,33 @@ def test_psi6_bad_input():
 def test_docstring_examples():
     result = doctest.testmod(analysis)
     assert result.attempted > 0 and result.failed == 0
+
+
+_RDF_MEMORY = r"""
+import resource, sys
+import numpy as np
+import edmd2d as ed
+n = 100_000
+box = ed.Box(400.0, 400.0)
+pos = np.random.default_rng(0).uniform(0.0, 400.0, (n, 2))
+before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+r, g = ed.radial_distribution(pos, box)
+grown = (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before) * 1024
+print(r[-1], abs(g[len(g) // 2:] - 1).max(), grown / n)
+"""
+
+
+def test_rdf_default_range_runs_in_memory_linear_in_n():
+    # 10^5 disks: half the box (the earlier default) would count 10^9-10^10 pairs.
+    # Five mean spacings (here 5 * 400 / sqrt(10^5) = 6.3) are counted, not listed:
+    # the process grows by well under a kilobyte per disk.
+    import os
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-c", _RDF_MEMORY], capture_output=True,
+                         text=True, timeout=300, check=True, env=dict(os.environ)).stdout
+    r_last, deviation, bytes_per_disk = map(float, out.split())
+    assert 6.0 < r_last < 6.33
+    assert deviation < 0.05  # (uniform points: g = 1)
+    assert bytes_per_disk < 1000

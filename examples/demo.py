@@ -10,7 +10,7 @@ can be trusted.
 
 from __future__ import annotations
 
-import sys
+import argparse
 import time
 
 import numpy as np
@@ -44,5 +44,12 @@ def main(n: int = 10_000, phi: float = 0.5) -> None:
 
 
 if __name__ == "__main__":
-    args = sys.argv[1:]
-    main(int(args[0]) if args else 10_000, float(args[1]) if len(args) > 1 else 0.5)
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("n", nargs="?", type=int, default=10_000,
+                        help="number of disks (default 10000)")
+    parser.add_argument("packing_fraction", nargs="?", type=float, default=0.5,
+                        help="area covered by the disks (default 0.5)")
+    args = parser.parse_args()
+    if args.n < 1 or not 0.0 < args.packing_fraction < ed.lattice_packing_limit(args.n):
+        parser.error("N must be >= 1 and the packing fraction in (0, the lattice limit)")
+    main(args.n, args.packing_fraction)

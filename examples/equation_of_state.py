@@ -13,7 +13,6 @@ equation and the virial series to B_10.
 
 from __future__ import annotations
 
-import argparse
 import math
 from pathlib import Path
 
@@ -86,7 +85,6 @@ def main(out: Path) -> None:
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out", nargs="?", type=Path,
-                        default=Path(__file__).parent / "output" / "equation_of_state.png")
-    main(parser.parse_args().out)
+    import _cli  # (examples/_cli.py: the gallery's shared command line)
+
+    _cli.run(globals(), "equation_of_state.png")

@@ -16,7 +16,6 @@ with the speed histogram (``.png``)::
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
 import matplotlib
@@ -77,7 +76,6 @@ def main(out: Path) -> None:
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out", nargs="?", type=Path,
-                        default=Path(__file__).parent / "output" / "gas_in_a_box.gif")
-    main(parser.parse_args().out)
+    import _cli  # (examples/_cli.py: the gallery's shared command line)
+
+    _cli.run(globals(), "gas_in_a_box.gif")

@@ -25,7 +25,6 @@ temperature against the laws at a few times::
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
 import matplotlib
@@ -110,7 +109,6 @@ def main(out: Path) -> None:
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out", nargs="?", type=Path,
-                        default=Path(__file__).parent / "output" / "granular_cooling.gif")
-    main(parser.parse_args().out)
+    import _cli  # (examples/_cli.py: the gallery's shared command line)
+
+    _cli.run(globals(), "granular_cooling.gif")

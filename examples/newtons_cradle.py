@@ -19,7 +19,6 @@ moment after the impact (``.png``) beside it::
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
 import matplotlib
@@ -74,7 +73,6 @@ def main(out: Path) -> None:
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out", nargs="?", type=Path,
-                        default=Path(__file__).parent / "output" / "newtons_cradle.gif")
-    main(parser.parse_args().out)
+    import _cli  # (examples/_cli.py: the gallery's shared command line)
+
+    _cli.run(globals(), "newtons_cradle.gif")

@@ -13,7 +13,6 @@ the fluid has no long-range bond orientation.
 
 from __future__ import annotations
 
-import argparse
 from pathlib import Path
 
 import matplotlib
@@ -64,7 +63,6 @@ def main(out: Path) -> None:
 
 
 if __name__ == "__main__":
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("out", nargs="?", type=Path,
-                        default=Path(__file__).parent / "output" / "rdf_dense_fluid.png")
-    main(parser.parse_args().out)
+    import _cli  # (examples/_cli.py: the gallery's shared command line)
+
+    _cli.run(globals(), "rdf_dense_fluid.png")

@@ -50,3 +50,29 @@ def test_granular_cooling_example_writes_its_animation(tmp_path, capsys):
     assert out.stat().st_size > 10_000 and out.with_suffix(".png").stat().st_size > 10_000
     text = capsys.readouterr().out
     assert "collisions/disk" in text and "wrote" in text
+
+
+@pytest.mark.parametrize("script", sorted(p.name for p in EXAMPLES.glob("[!_]*.py")))
+def test_every_example_explains_its_command_line(script):
+    import subprocess
+    import sys
+
+    res = subprocess.run([sys.executable, str(EXAMPLES / script), "--help"],
+                         capture_output=True, text=True, timeout=120)
+    assert res.returncode == 0, res.stderr
+    assert res.stdout.startswith("usage:")
+
+
+def test_an_example_runs_smaller_and_shorter_from_the_command_line(tmp_path):
+    import subprocess
+    import sys
+
+    out = tmp_path / "small.gif"
+    res = subprocess.run([sys.executable, str(EXAMPLES / "gas_in_a_box.py"), "--n", "60",
+                          "--duration", "6", str(out)], capture_output=True, text=True,
+                         timeout=300)
+    assert res.returncode == 0, res.stderr
+    assert out.stat().st_size > 1000 and "wrote" in res.stdout
+    bad = subprocess.run([sys.executable, str(EXAMPLES / "gas_in_a_box.py"), "--n", "0"],
+                         capture_output=True, text=True, timeout=120)
+    assert bad.returncode == 2 and "--n must be positive" in bad.stderr

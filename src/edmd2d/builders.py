@@ -68,7 +68,10 @@ def make_gas(
     Returns
     -------
     Simulation
-        At time 0.
+        At time 0.  Above the melting of hard disks (packing fraction about 0.70 to
+        0.72) the lattice start does not melt: the system stays a crystal (hexatic
+        and solid phases), however long it runs; below it, run a few tens of
+        collisions per disk before measuring, so that the lattice start has melted.
 
     Raises
     ------

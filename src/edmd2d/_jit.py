@@ -29,11 +29,15 @@ response must conserve energy and momentum to rounding.
 
 from __future__ import annotations
 
+import contextlib
+import hashlib
 import os
+from pathlib import Path
 
 from numba import njit as _numba_njit
+from numba.core import config as _numba_config
 
-__all__ = ["CACHE", "kernel", "njit"]
+__all__ = ["CACHE", "CACHE_DIR", "kernel", "njit"]
 
 CACHE: bool = os.environ.get("EDMD2D_NUMBA_CACHE", "1").strip().lower() not in {
     "0",
@@ -43,12 +47,59 @@ CACHE: bool = os.environ.get("EDMD2D_NUMBA_CACHE", "1").strip().lower() not in {
 }
 
 
+def _engine_digest() -> str:
+    """A digest of the source of every module that holds compiled code."""
+    here = Path(__file__).resolve().parent
+    digest = hashlib.sha256()
+    for path in sorted([here / "_jit.py", *(here / "_engine").glob("*.py")]):
+        digest.update(path.name.encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+# numba keys a cached function on the source of its own file only: after an edit of a
+# module it calls (a contact time, a response, the queue), the event loop's cached
+# machine code would be loaded unchanged.  edmd2d's functions are therefore cached in
+# a directory named by a digest of all the engine's sources (under NUMBA_CACHE_DIR if
+# set, else beside the package), so that any edit compiles afresh.
+CACHE_DIR: str | None = None
+if CACHE:
+    _base = os.environ.get("NUMBA_CACHE_DIR") or str(Path(__file__).resolve().parent
+                                                      / "__pycache__")
+    CACHE_DIR = os.path.join(_base, f"edmd2d-engine-{_engine_digest()}")
+
+
+@contextlib.contextmanager
+def _engine_cache_dir():
+    """numba reads its cache directory when a function is decorated: point it at
+    :data:`CACHE_DIR` for edmd2d's functions only."""
+    if CACHE_DIR is None:
+        yield
+        return
+    before = _numba_config.CACHE_DIR
+    _numba_config.CACHE_DIR = CACHE_DIR
+    try:
+        yield
+    finally:
+        _numba_config.CACHE_DIR = before
+
+
 def njit(*args, **kwargs):
-    """``numba.njit`` with edmd2d's defaults (cache on unless disabled, no fastmath)."""
+    """``numba.njit`` with edmd2d's defaults (cache on unless disabled, no fastmath,
+    cached under :data:`CACHE_DIR`)."""
     kwargs.setdefault("cache", CACHE)
     kwargs.setdefault("fastmath", False)
     kwargs.setdefault("error_model", "numpy")
-    return _numba_njit(*args, **kwargs)
+    if args and callable(args[0]):
+        with _engine_cache_dir():
+            return _numba_njit(*args, **kwargs)
+    decorate = _numba_njit(*args, **kwargs)
+
+    def decorator(func):
+        with _engine_cache_dir():
+            return decorate(func)
+
+    return decorator
 
 
 def kernel(func):

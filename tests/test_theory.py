@@ -107,3 +107,18 @@ def test_enskog_rate_matches_the_relative_speed_average():
 def test_docstring_examples():
     result = doctest.testmod(theory)
     assert result.attempted > 0 and result.failed == 0
+
+
+def test_haffs_law_is_the_exponential_law_at_the_collision_count_it_implies():
+    # With omega = omega0 sqrt(T / T0), Haff's T(t) accumulates C(t) = omega0 t_H
+    # ln(1 + t / t_H) collisions per disk, and exp(-(1 - e^2) C / 2) at that C is
+    # Haff's T again: the two laws are one, integrated against time or collisions.
+    e, omega0 = 0.8, 0.3
+    t_h = 4.0 / ((1 - e * e) * omega0)
+    t = np.linspace(0.0, 5.0 * t_h, 11)
+    c = omega0 * t_h * np.log1p(t / t_h)
+    np.testing.assert_allclose(theory.haff_temperature(e, t, omega0),
+                               theory.homogeneous_cooling(e, c), rtol=1e-12)
+    assert theory.homogeneous_cooling(1.0, 50.0) == 1.0
+    with pytest.raises(ValueError, match="restitution must lie in"):
+        theory.haff_temperature(0.0, 1.0, 1.0)

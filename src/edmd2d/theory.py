@@ -44,6 +44,8 @@ __all__ = [
     "virial_z",
     "contact_value",
     "enskog_collision_rate",
+    "homogeneous_cooling",
+    "haff_temperature",
     "number_density",
     "mean_speed",
     "maxwell_boltzmann_speed_pdf",
@@ -110,6 +112,16 @@ def santos_z(eta):
     It has the exact second virial coefficient and diverges at close packing; in the
     dense fluid it lies below Henderson's formula (4.043 against 4.125 at ``eta = 0.5``).
 
+    Parameters
+    ----------
+    eta : float or array_like
+        Packing fraction in [0, pi sqrt(3) / 6).
+
+    Returns
+    -------
+    float or ndarray
+        ``Z = P A / (N kT)``.
+
     Examples
     --------
     >>> round(santos_z(0.5), 4)
@@ -127,6 +139,23 @@ def virial_z(eta, order: int = 10):
     (``a`` the disk area), ``B_3``, ``B_4`` exact and ``B_5 .. B_10`` of Clisby and McCoy,
     J. Stat. Phys. 122, 15 (2006).  A truncated series: excellent in the dilute fluid,
     too low by ~0.02 at ``eta = 0.5`` with ``order=10``.
+
+    Parameters
+    ----------
+    eta : float or array_like
+        Packing fraction in [0, 1).
+    order : int, default 10
+        The last virial coefficient included, 2 to 10.
+
+    Returns
+    -------
+    float or ndarray
+        ``Z`` of the truncated series.
+
+    Raises
+    ------
+    ValueError
+        For an ``order`` outside 2..10 or a packing fraction outside [0, 1).
 
     Examples
     --------
@@ -152,6 +181,18 @@ def contact_value(z, eta):
     This is the 2D virial theorem for hard disks, ``Z = 1 + (pi / 2) n sigma^2
     g(sigma) = 1 + 2 eta g(sigma)`` (in 3D it would be ``1 + 4 eta g(sigma)``).
 
+    Parameters
+    ----------
+    z : float or array_like
+        Compressibility factor ``P A / (N kT)``.
+    eta : float or array_like
+        Packing fraction, > 0.
+
+    Returns
+    -------
+    float or ndarray
+        ``g(sigma)``.
+
     Examples
     --------
     >>> contact_value(henderson_z(0.5), 0.5)
@@ -165,6 +206,18 @@ def contact_value(z, eta):
 
 def number_density(eta, diameter: float = 1.0):
     """Number density of equal disks, ``n = 4 eta / (pi sigma^2)``.
+
+    Parameters
+    ----------
+    eta : float or array_like
+        Packing fraction.
+    diameter : float, default 1.0
+        ``sigma``, > 0.
+
+    Returns
+    -------
+    float or ndarray
+        Disks per unit area.
 
     Examples
     --------
@@ -195,6 +248,12 @@ def enskog_collision_rate(n, diameter, g_contact, temperature: float = 1.0,
         Pair distribution at contact, e.g. ``contact_value(henderson_z(eta), eta)``.
     temperature, mass : float, default 1.0
 
+    Returns
+    -------
+    float or ndarray
+        ``omega``: each disk's collisions per unit time (a collision counts once for
+        each of its two disks).
+
     Examples
     --------
     >>> eta = 0.3
@@ -212,6 +271,15 @@ def enskog_collision_rate(n, diameter, g_contact, temperature: float = 1.0,
 def mean_speed(temperature: float = 1.0, mass: float = 1.0) -> float:
     """Mean speed in 2D Maxwell-Boltzmann equilibrium, ``<|v|> = sqrt(pi kT / (2 m))``.
 
+    Parameters
+    ----------
+    temperature, mass : float, default 1.0
+        ``kT`` and ``m``, > 0.
+
+    Returns
+    -------
+    float
+
     Examples
     --------
     >>> round(mean_speed(), 6)
@@ -227,6 +295,17 @@ def maxwell_boltzmann_speed_pdf(v, temperature: float = 1.0, mass: float = 1.0):
 
     (In 3D the density grows as ``v^2``; in 2D the shell is a circle, hence ``v``.)
 
+    Parameters
+    ----------
+    v : float or array_like
+        Speeds (the density is 0 below 0).
+    temperature, mass : float, default 1.0
+        ``kT`` and ``m``, > 0.
+
+    Returns
+    -------
+    float or ndarray
+
     Examples
     --------
     >>> from scipy.integrate import quad
@@ -237,3 +316,66 @@ def maxwell_boltzmann_speed_pdf(v, temperature: float = 1.0, mass: float = 1.0):
     m = as_positive_float("mass", mass)
     v = np.asarray(v, dtype=float)
     return _out(np.where(v >= 0, (m * v / kt) * np.exp(-m * v**2 / (2.0 * kt)), 0.0))
+
+
+def homogeneous_cooling(restitution, collisions_per_disk):
+    """Granular temperature of a homogeneous cooling gas against collisions per disk,
+    ``T / T0 = exp(-(1 - e^2) C / 2)`` (2D, smooth disks; derived in
+    ``docs/restitution.md``).
+
+    Parameters
+    ----------
+    restitution : float
+        Coefficient of normal restitution ``e`` in (0, 1].
+    collisions_per_disk : float or array_like
+        ``C``, collisions per disk since ``T0`` (each collision counts for both disks).
+
+    Returns
+    -------
+    float or ndarray
+        ``T / T0``.
+
+    Examples
+    --------
+    >>> round(homogeneous_cooling(0.9, 10.0), 4)
+    0.3867
+    """
+    e = _restitution(restitution)
+    return _out(np.exp(-(1.0 - e * e) * np.asarray(collisions_per_disk, dtype=float) / 2.0))
+
+
+def haff_temperature(restitution, time, collision_rate):
+    """Haff's law for a homogeneous cooling gas, ``T / T0 = 1 / (1 + t / t_H)^2`` with
+    ``t_H = 4 / ((1 - e^2) omega0)``.
+
+    Parameters
+    ----------
+    restitution : float
+        Coefficient of normal restitution ``e`` in (0, 1].
+    time : float or array_like
+        Time since ``T0``.
+    collision_rate : float
+        ``omega0``, collisions per disk per unit time at ``T0`` (for example
+        :func:`enskog_collision_rate`).
+
+    Returns
+    -------
+    float or ndarray
+        ``T / T0``.
+
+    Examples
+    --------
+    >>> round(haff_temperature(0.9, 10.0, 0.25), 4)
+    0.799
+    """
+    e = _restitution(restitution)
+    omega = as_positive_float("collision_rate", collision_rate)
+    return _out(1.0 / (1.0 + (1.0 - e * e) * omega * np.asarray(time, dtype=float) / 4.0) ** 2)
+
+
+def _restitution(e) -> float:
+    value = float(e)
+    if not 0.0 < value <= 1.0:
+        raise ValueError(f"restitution must lie in (0, 1], got {e!r}")
+    return value
+

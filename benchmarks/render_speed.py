@@ -85,7 +85,8 @@ def main() -> None:
     make(50).advance(until=1.0)  # compile (or load the cached) engine
     print(f"warm-up (JIT compile or cache load): {time.perf_counter() - t0:.1f} s")
     print(f"gas at packing fraction {PACKING}, {FPS} frames per unit time, "
-          f"{args.frames} frames, 640x640 px, matplotlib {matplotlib.__version__}")
+          f"{args.frames} frames, figure 640x640 px (GIFs at their default 480 px), "
+          f"matplotlib {matplotlib.__version__}")
     print(f"{'N':>6} {'advance':>9} {'draw':>9} {'gif':>9} {'gif tot':>9} "
           f"{'mp4':>9} {'mp4 tot':>9}   (seconds per frame, median)")
     for n in args.n:

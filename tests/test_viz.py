@@ -42,6 +42,30 @@ def small_periodic():
                          box=ed.Box(10.0, 10.0, periodic=True))
 
 
+def trail_steps(trails):
+    """The trail's steps as an (m, 2, 2) array of (start, end) pairs, and each step's alpha.
+
+    Each path of the trail collection holds all the steps of one age, as start/end pairs
+    separated by NaN rows."""
+    steps, alphas = [], []
+    for seg, rgba in zip(trails.get_segments(), trails.get_colors()):
+        pairs = np.asarray(seg).reshape(-1, 2, 2)  # get_segments() drops the NaN rows
+        steps.append(pairs)
+        alphas.append(np.full(len(pairs), rgba[3]))
+    if not steps:
+        return np.zeros((0, 2, 2)), np.zeros(0)
+    return np.concatenate(steps), np.concatenate(alphas)
+
+
+HAVE_IMAGEIO_FFMPEG = __import__("importlib").util.find_spec("imageio_ffmpeg") is not None
+needs_imageio_ffmpeg = pytest.mark.skipif(not HAVE_IMAGEIO_FFMPEG,
+                                          reason="needs pip install 'edmd2d[video]'")
+
+
+def no_system_ffmpeg(monkeypatch):
+    monkeypatch.setitem(matplotlib.rcParams, "animation.ffmpeg_path", "no-such-ffmpeg-here")
+
+
 def walled_with_walls():
     pos = [[2.0, 2.0], [6.0, 5.0], [8.0, 8.0]]
     vel = [[1.0, 0.0], [0.0, 1.0], [-1.0, -1.0]]
@@ -164,6 +188,57 @@ def test_time_text():
     assert "t = 1.50" in text and f"collisions {sim.counts.collisions}" in text
 
 
+@pytest.mark.parametrize("make", ["draw", "animate", "draw_given_axes", "colorbar", "tall"])
+def test_time_label_sits_above_the_box_inside_the_axes(make):
+    sim = ed.make_gas(200, 0.5, seed=3)  # disks right up to the top edge
+    if make == "tall":  # too narrow for one line: two
+        sim = ed.Simulation([[1.0, 11.5], [1.0, 5.0]], [[1.0, 0.0], [0.0, 0.0]], radii=0.5,
+                            box=ed.Box(2.0, 12.0, periodic=False))
+        ax = viz.draw(sim, show_time=True)
+        assert "\n" in by_gid(ax, "edmd2d-text").get_text()
+    elif make == "draw":
+        ax = viz.draw(sim, show_time=True)
+    elif make == "animate":
+        anim = viz.animate(sim, duration=0.2, fps=10)
+        anim._draw_was_started = True
+        ax = anim.ax
+    elif make == "draw_given_axes":
+        _, (ax, _other) = plt.subplots(1, 2, figsize=(8, 3))
+        viz.draw(sim, ax=ax, show_time=True)
+    else:
+        ax = viz.draw(sim, show_time=True, colorbar=True)
+    fig = ax.figure
+    fig.canvas.draw()
+    label = by_gid(ax, "edmd2d-text").get_window_extent(fig.canvas.get_renderer())
+    # the top of the box (and of every disk drawn inside it) in pixels
+    box_top = ax.transData.transform([(0.0, sim.box.height)])[0, 1]
+    box_left, _ = ax.transData.transform([(0.0, 0.0)])[0]
+    disks_top = ax.transData.transform(
+        [(0.0, (sim.positions[:, 1] + sim.radii).max())])[0, 1]
+    assert label.y0 > box_top >= disks_top - 1e-9
+    # inside the axes, so that blitting (which redraws the axes' area) updates it,
+    # and inside the figure
+    bb = ax.bbox
+    assert bb.x0 - 1 <= label.x0 and label.x1 <= bb.x1 + 1
+    assert bb.y0 - 1 <= label.y0 and label.y1 <= bb.y1 + 1
+    assert label.x0 == pytest.approx(box_left, abs=1.0)  # left-aligned with the box
+    assert label.x1 <= fig.bbox.x1 and label.y1 <= fig.bbox.y1
+
+
+def test_time_label_leaves_the_box_as_large_as_without_it():
+    sim = small_periodic()
+    plain = viz.draw(sim)
+    labelled = viz.draw(sim, show_time=True)
+    for ax in (plain, labelled):
+        ax.figure.canvas.draw()
+    def box_px(ax):
+        (x0, y0), (x1, y1) = ax.transData.transform([(0, 0), (10, 10)])
+        return x1 - x0, y1 - y0
+    assert box_px(labelled) == pytest.approx(box_px(plain), rel=1e-6)
+    w, h = labelled.figure.get_size_inches()
+    assert w == pytest.approx(6.4) and 6.4 < h < 6.8  # a strip added above
+
+
 # --------------------------------------------------------------------- animations
 def test_animation_steps_to_exact_frame_times_and_gif_has_every_frame(tmp_path):
     sim = small_periodic()
@@ -204,19 +279,45 @@ def test_trails_follow_the_disk_and_break_at_periodic_wraps():
     trails = by_gid(anim.ax, "edmd2d-trails")
     for k in range(len(anim.frame_times)):
         anim.goto_frame(k)
-        for seg in trails.get_segments():
-            step = np.asarray(seg)
+        steps, _ = trail_steps(trails)
+        for step in steps:
             # a step is half a unit long: never a line across the box
             assert np.hypot(*(step[1] - step[0])) == pytest.approx(0.5)
     anim._draw_was_started = True
-    segs = np.array(trails.get_segments())
+    segs, alphas = trail_steps(trails)
     # at t = 2 the disk is at x = 1.1 (wrapped); it crossed x = 10 at t = 1.45, so of
     # the last three steps the first is drawn twice: ending at 0.1 and at 10.1
     assert len(segs) == 4
     ends = {tuple(np.round(s[1], 12)) for s in segs}
     assert ends == {(1.1, 5.0), (0.6, 5.0), (0.1, 5.0), (10.1, 5.0)}
-    alphas = trails.get_colors()[:, 3]
     assert alphas.max() == pytest.approx(1.0) and alphas.min() == pytest.approx(1 / 3)
+    # the newest step is the most opaque, both copies of the wrapped one the faintest
+    newest = np.flatnonzero(np.isclose(segs[:, 1, 0], 1.1))
+    wrapped = np.flatnonzero(np.isclose(segs[:, 1, 0], 0.1) | np.isclose(segs[:, 1, 0], 10.1))
+    assert alphas[newest] == pytest.approx([1.0])
+    assert alphas[wrapped] == pytest.approx([1 / 3, 1 / 3])
+
+
+def test_trails_drawn_as_one_path_per_age_and_rendered_with_breaks():
+    sim = ed.make_gas(30, 0.3, seed=2)
+    anim = viz.animate(sim, duration=1.0, fps=10, trail=4, blit=False, color_by=None,
+                       show_time=False)
+    for k in range(6):
+        anim.goto_frame(k)
+    anim._draw_was_started = True
+    trails = by_gid(anim.ax, "edmd2d-trails")
+    assert len(trails.get_paths()) == 4  # one path per age, not one per step
+    steps, _ = trail_steps(trails)
+    assert len(steps) >= 4 * len(sim)
+    # Agg breaks each path at its NaN rows: no line joins one disk's step to the next
+    # disk's (those joins would cross the box; the steps are a few pixels long)
+    fig = anim.ax.figure
+    for coll in anim.ax.collections:
+        coll.set_visible(coll is trails)
+    trails.set_color("k")
+    fig.canvas.draw()
+    inked = (np.asarray(fig.canvas.buffer_rgba())[..., :3] < 128).any(axis=-1).mean()
+    assert 0 < inked < 0.015  # 0.3 % measured; joined steps would ink 3.9 %
 
 
 @pytest.mark.skipif(
@@ -245,6 +346,154 @@ def test_save_mp4_without_ffmpeg_says_how_to_get_it(tmp_path, monkeypatch):
     with pytest.raises(RuntimeError, match=r"edmd2d\[video\]"):
         viz.save(anim, tmp_path / "run.mp4", progress=False)
     anim._draw_was_started = True
+
+
+@needs_imageio_ffmpeg
+def test_animation_save_method_writes_mp4_without_a_system_ffmpeg(tmp_path, monkeypatch):
+    no_system_ffmpeg(monkeypatch)
+    sim = small_periodic()
+    anim = viz.animate(sim, duration=0.5, fps=10)
+    anim.save(tmp_path / "run.mp4")  # matplotlib's own way
+    import imageio_ffmpeg
+
+    frames, _ = imageio_ffmpeg.count_frames_and_secs(str(tmp_path / "run.mp4"))
+    assert frames == len(anim.frame_times)
+    assert sim.time == anim.frame_times[-1]
+
+
+@needs_imageio_ffmpeg
+def test_to_html5_video_without_a_system_ffmpeg(monkeypatch):
+    no_system_ffmpeg(monkeypatch)
+    anim = viz.animate(small_periodic(), duration=0.3, fps=10)
+    assert "<video" in anim.to_html5_video()
+
+
+def test_animation_save_method_gif_uses_the_viz_writer(tmp_path):
+    sim = small_periodic()
+    anim = viz.animate(sim, duration=0.5, fps=10)
+    anim.save(str(tmp_path / "run.gif"), dpi=50)
+    with Image.open(tmp_path / "run.gif") as im:
+        assert im.n_frames == len(anim.frame_times)
+        assert im.size == tuple(int(x * 50) for x in anim.ax.figure.get_size_inches())
+        assert len(im.getcolors()) <= 32
+    assert sim.time == anim.frame_times[-1]
+
+
+def test_gif_defaults_three_quarter_resolution_and_32_colours(tmp_path):
+    anim = viz.animate(small_periodic(), duration=0.2, fps=10)
+    path = viz.save(anim, tmp_path / "run.gif", progress=False)
+    with Image.open(path) as im:
+        # the 640 px wide figure (taller by the time label's strip) at three quarters
+        width, height = anim.ax.figure.get_size_inches() * 75
+        assert im.size == (480, int(height)) and height < width * 1.05
+        for k in range(im.n_frames):
+            im.seek(k)
+            assert len(im.convert("RGB").getcolors()) <= 32
+    anim = viz.animate(small_periodic(), duration=0.2, fps=10)
+    path = viz.save(anim, tmp_path / "rich.gif", dpi=100, colors=256, progress=False)
+    with Image.open(path) as im:
+        assert im.size[0] == 640
+        assert len(im.convert("RGB").getcolors()) > 32
+    anim = viz.animate(small_periodic(), duration=0.2, fps=10)
+    with pytest.raises(ValueError, match="colors"):
+        viz.save(anim, tmp_path / "run.gif", colors=1, progress=False)
+    with pytest.raises(ValueError, match="colors.*gif"):
+        viz.save(anim, tmp_path / "run.mp4", colors=64, progress=False)
+    anim._draw_was_started = True
+
+
+@pytest.mark.parametrize("how", ["method", "viz.save"])
+def test_unwritable_target_fails_before_rendering_anything(tmp_path, monkeypatch, how):
+    no_system_ffmpeg(monkeypatch)
+    monkeypatch.setitem(sys.modules, "imageio_ffmpeg", None)
+    monkeypatch.setitem(matplotlib.rcParams, "animation.convert_path", "no-such-convert")
+    sim = small_periodic()
+    anim = viz.animate(sim, duration=0.5, fps=10)
+
+    def save(name, **kwargs):
+        if how == "method":
+            anim.save(str(tmp_path / name), **kwargs)
+        else:
+            viz.save(anim, tmp_path / name, progress=False, **kwargs)
+
+    cases = [
+        (("run.mp4",), {}, RuntimeError, r"pip install 'edmd2d\[video\]'"),
+        (("run.mov",), {"writer": "ffmpeg"}, RuntimeError, r"edmd2d\[video\]"),
+        (("run.mp4",), {"writer": "pillow"}, ValueError, r"Pillow cannot write \.mp4"),
+        (("run.gif",), {"writer": "imagemagick"}, RuntimeError, "ImageMagick"),
+        (("run.gif",), {"writer": "no-such-writer"}, ValueError, "unknown writer"),
+        (("run.avi",), {}, ValueError, "cannot tell"),
+        (("missing/run.gif",), {}, FileNotFoundError, "folder"),
+    ]
+    for args, kwargs, error, match in cases:
+        with pytest.raises(error, match=match):
+            save(*args, **kwargs)
+        assert sim.time == 0.0, f"{args} {kwargs}: the simulation was advanced"
+    assert list(tmp_path.iterdir()) == []
+    # and the animation is still good for a format that can be written
+    save("run.gif")
+    with Image.open(tmp_path / "run.gif") as im:
+        assert im.n_frames == len(anim.frame_times)
+
+
+@pytest.mark.parametrize("how", ["method", "viz.save"])
+def test_second_save_says_the_animation_was_already_played(tmp_path, how):
+    sim = small_periodic()
+    anim = viz.animate(sim, duration=0.3, fps=10)
+    if how == "method":
+        anim.save(str(tmp_path / "first.gif"))
+    else:
+        viz.save(anim, tmp_path / "first.gif", progress=False)
+    for name in ("again.gif", "again.mp4"):
+        with pytest.raises(RuntimeError, match="already played") as info:
+            if how == "method":
+                anim.save(str(tmp_path / name))
+            else:
+                viz.save(anim, tmp_path / name, progress=False)
+        assert "viz.animate" in str(info.value) and "only run forward" in str(info.value)
+    assert not (tmp_path / "again.gif").exists() and not (tmp_path / "again.mp4").exists()
+
+
+def test_advanced_elsewhere_is_not_called_played(tmp_path):
+    sim = small_periodic()
+    anim = viz.animate(sim, duration=0.3, fps=10)
+    sim.advance(until=1.0)
+    with pytest.raises(RuntimeError, match="advanced to t=1 after") as info:
+        viz.save(anim, tmp_path / "late.gif", progress=False)
+    assert "already played" not in str(info.value)
+
+
+def test_each_frame_is_drawn_once_when_saving(tmp_path, monkeypatch):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    anim = viz.animate(small_periodic(), duration=1.0, fps=10)
+    draws = []
+    original = FigureCanvasAgg.draw
+    monkeypatch.setattr(FigureCanvasAgg, "draw",
+                        lambda self, *a, **k: (draws.append(1), original(self, *a, **k))[1])
+    viz.save(anim, tmp_path / "run.gif", progress=False)
+    assert len(draws) == len(anim.frame_times)
+
+
+def test_other_writers_still_redraw_each_frame(tmp_path):
+    # a writer that reads the canvas instead of calling savefig gets drawn frames
+    class CanvasWriter(matplotlib.animation.AbstractMovieWriter):
+        def setup(self, fig, outfile, dpi=None):
+            super().setup(fig, outfile, dpi)
+            self.frames = []
+
+        def grab_frame(self, **kwargs):
+            self.frames.append(np.asarray(self.fig.canvas.buffer_rgba()).copy())
+
+        def finish(self):
+            pass
+
+    sim = small_periodic()
+    anim = viz.animate(sim, duration=0.3, fps=10, color_by=None, show_time=False)
+    writer = CanvasWriter(fps=10)
+    anim.save(str(tmp_path / "x.raw"), writer=writer)
+    assert len(writer.frames) == 4
+    assert not np.array_equal(writer.frames[0], writer.frames[-1])
 
 
 def test_save_still_and_progress(tmp_path):

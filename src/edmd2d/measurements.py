@@ -8,6 +8,7 @@ equal sub-windows.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -15,8 +16,13 @@ import numpy as np
 
 from ._validate import as_count, as_positive_float
 
-__all__ = ["Measurement", "measure", "kinetic_temperature", "degrees_of_freedom", "Cooling",
-           "cooling"]
+__all__ = ["Measurement", "measure", "kinetic_temperature", "degrees_of_freedom",
+           "container_area", "Cooling", "cooling"]
+
+# End points of two wall segments closer than this fraction of the box's larger side
+# count as one vertex of a closed polygon (Wall.polygon repeats the vertex exactly;
+# hand-built walls may differ by rounding).
+_COINCIDE = 1e-9
 
 
 @dataclass(frozen=True)
@@ -42,7 +48,12 @@ class Measurement:
     n : int
         Number of movable disks (``mass < inf``): the ``N`` of every formula below.
     area : float
-        Box area ``A``.
+        The area ``A`` of the pressure and of ``Z``: the box's area, the area of the
+        container of wall segments that holds the disks, or the one given (see
+        :func:`measure` and :func:`container_area`).
+    area_source : str
+        Where ``area`` comes from: ``"box"``, ``"walls"`` (closed polygons of wall
+        segments) or ``"given"`` (the ``area`` argument).
     degrees_of_freedom : int
         ``f = 2N`` minus one for every Cartesian component of the total momentum that
         the dynamics conserves (see :func:`degrees_of_freedom`).
@@ -55,8 +66,9 @@ class Measurement:
         disk-disk collisions of the window, ``J`` is the impulse magnitude and ``|r_ij|``
         the centre distance at contact.  (This is the 2D virial theorem: the
         ``1/(2t)`` is ``1/(d t)`` with ``d = 2`` dimensions.)  In a fully periodic box
-        this is the bulk pressure.  In a box with walls it is the virial pressure of
-        the whole box, which includes the walls' share (see ``wall_pressure``).
+        this is the bulk pressure.  In a box or container with walls it is the virial
+        pressure of the container, which differs from the force per length on its
+        walls by a surface term (see :func:`measure`).
     pressure_xx, pressure_yy : float
         Diagonal of the pressure tensor, ``P_aa A = N kT_a + sum J |r_ij| n_a^2 / t``
         with ``n`` the unit contact normal and ``kT_a`` the kinetic temperature of the
@@ -76,12 +88,33 @@ class Measurement:
         ``mean_speed * mean_free_time``.
     wall_pressure, wall_pressure_error : float
         Impulse delivered to the box walls (on walled axes) per unit time and per unit
-        wall length: a mechanical pressure.  ``nan`` in a fully periodic box.
+        wall length: a mechanical pressure.  ``nan`` in a fully periodic box.  Wall
+        segments are not included (see ``segment_pressure``).
     box_wall_pressures : tuple of 4 float
         The same for each box wall, in the order x=0, x=width, y=0, y=height (``nan``
         on periodic axes).
     segment_force : float
-        Impulse delivered to all wall segments per unit time (0.0 without segments).
+        Sum of the impulse magnitudes delivered to all wall segments, per unit time
+        (0.0 without segments).  A total over every direction, not a force vector: see
+        ``segment_forces``.
+    segment_contacts : ndarray of int, shape (S,)
+        Contacts of disks with each wall segment (``sim.walls[k]``) in the window.
+    segment_forces, segment_forces_error : ndarray, shape (S, 2)
+        Mean force ``(F_x, F_y)`` on each segment: the impulse it received (sides and
+        end points, each contact pushing along its normal, away from the disk) per
+        unit time.
+    segment_pressures, segment_pressures_error : ndarray, shape (S, 2)
+        Normal force per unit length on each side of each segment, left then right
+        (the left side lies to the left going from ``start`` to ``end``: the inside
+        of a counterclockwise ``Wall.polygon``): the normal impulse of the contacts on
+        that side per unit time, divided by the segment's length.  Contacts with the
+        end points are left out (they push along other directions; they are in
+        ``segment_forces``).  0 on a side no disk touched.
+    segment_pressure, segment_pressure_error : float
+        The mean normal force per unit length over the segment sides that the disks
+        reach (those touched since the simulation was created): their normal impulse
+        in the window over their total length, per unit time.  The mechanical pressure
+        on a container of segments.  ``nan`` if no side was ever touched.
     """
 
     duration: float
@@ -108,17 +141,40 @@ class Measurement:
     wall_pressure_error: float
     box_wall_pressures: tuple
     segment_force: float
+    area_source: str
+    segment_contacts: np.ndarray
+    segment_forces: np.ndarray
+    segment_forces_error: np.ndarray
+    segment_pressures: np.ndarray
+    segment_pressures_error: np.ndarray
+    segment_pressure: float
+    segment_pressure_error: float
 
     def summary(self) -> str:
-        """A few lines with the main values and their error bars."""
+        """A few lines with the main values and their error bars.
+
+        Box walls are listed when they were touched (or when no segment was); wall
+        segments by their mean pressure and, for up to 8 touched sides, one line each
+        with the segment's mean force (``walls[k]`` is ``sim.walls[k]``)."""
 
         def pm(value, err):
             return f"{value:.6g} +- {err:.2g}" if np.isfinite(err) else f"{value:.6g}"
 
-        lines = [
-            f"window {self.duration:g} ({self.blocks} blocks), N={self.n}, "
-            f"{self.collisions} collisions",
-            f"temperature            {self.temperature:.6g}",
+        segment_hits = int(self.segment_contacts.sum())
+        box_hits = self.wall_collisions - segment_hits
+        head = (f"window {self.duration:g} ({self.blocks} blocks), N={self.n}, "
+                f"{self.collisions} collisions")
+        if segment_hits:
+            head += (f", {box_hits} box wall and" if box_hits else ",")
+            head += f" {segment_hits} segment contacts"
+        elif box_hits:
+            head += f", {box_hits} wall contacts"
+        lines = [head, f"temperature            {self.temperature:.6g}"]
+        if self.area_source != "box":
+            where = ("inside closed polygons of wall segments"
+                     if self.area_source == "walls" else "given")
+            lines.append(f"area                   {self.area:.6g} ({where})")
+        lines += [
             f"pressure               {pm(self.pressure, self.pressure_error)}",
             f"compressibility Z      "
             f"{pm(self.compressibility_factor, self.compressibility_factor_error)}",
@@ -126,10 +182,31 @@ class Measurement:
             f"mean free time         {pm(self.mean_free_time, self.mean_free_time_error)}",
             f"mean free path         {self.mean_free_path:.6g}",
         ]
-        if np.isfinite(self.wall_pressure):
-            lines.append(f"wall pressure          "
-                         f"{pm(self.wall_pressure, self.wall_pressure_error)}")
+        if np.isfinite(self.wall_pressure) and (box_hits > 0 or segment_hits == 0):
+            label = "box wall pressure" if segment_hits else "wall pressure"
+            lines.append(f"{label:<23}{pm(self.wall_pressure, self.wall_pressure_error)}")
+        if np.isfinite(self.segment_pressure):
+            touched = np.argwhere(self.segment_pressures > 0.0)
+            lines.append(f"segment pressure       "
+                         f"{pm(self.segment_pressure, self.segment_pressure_error)} "
+                         f"(force per length; {len(touched)} sides touched)")
+            for k, side in touched[:_SUMMARY_SIDES]:
+                fx, fy = self.segment_forces[k]
+                lines.append(
+                    f"  walls[{k}] {('left', 'right')[side]:<5}       "
+                    f"{pm(self.segment_pressures[k, side], self.segment_pressures_error[k, side])}"
+                    f"   force ({fx:.4g}, {fy:.4g})")
+            if len(touched) > _SUMMARY_SIDES:
+                lines.append(f"  ... {len(touched) - _SUMMARY_SIDES} more sides in "
+                             "segment_pressures and segment_forces")
+        elif segment_hits:
+            lines.append(f"segment force          {self.segment_force:.6g} "
+                         f"(end points only, see segment_forces)")
         return "\n".join(lines)
+
+
+# Touched segment sides listed one per line by Measurement.summary.
+_SUMMARY_SIDES = 8
 
 
 def degrees_of_freedom(sim) -> tuple[int, tuple[bool, bool]]:
@@ -193,7 +270,8 @@ def kinetic_temperature(sim) -> float:
     return (twice_ke - cm) / dof
 
 
-def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
+def measure(sim, duration: float, *, blocks: int = 10,
+            area: float | None = None) -> Measurement:
     """Run ``sim`` for ``duration`` and measure pressure, temperature and collision rates.
 
     The window is cut into ``blocks`` equal sub-windows; the values returned are the
@@ -201,7 +279,7 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
     values.  Equilibrate first (``sim.advance(until=...)``): every collision of the
     window counts.
 
-    Formulas (2D, ``k_B = 1``; ``N`` movable disks, box area ``A``, window length ``t``,
+    Formulas (2D, ``k_B = 1``; ``N`` movable disks, area ``A``, window length ``t``,
     ``C`` disk-disk collisions, ``J`` impulse magnitude, ``|r_ij|`` contact distance):
 
     - temperature ``kT = (sum m v^2 - P_c^2 / M) / f`` with ``f = 2N - (number of
@@ -211,7 +289,20 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
     - compressibility factor ``Z = P A / (N kT)``;
     - collision rate per disk ``2 C / (N t)``; mean free time its inverse; mean free
       path ``<|v|>`` times the mean free time;
-    - wall pressure: impulse on the box walls per unit time per unit wall length.
+    - wall pressure: impulse on the box walls per unit time per unit wall length;
+    - on each wall segment: the mean force vector (impulse per unit time) and, on each
+      side, the normal force per unit length (``segment_pressures``).
+
+    The area ``A`` is that of the container holding the movable disks
+    (:func:`container_area`): the box, or, when the disks sit inside a closed polygon
+    of the simulation's wall segments, the polygon's area (less the closed polygons
+    inside it, obstacles the disks flow around).  It is the container's area, bounded
+    by the walls themselves, not the smaller area that the disk centres can reach (a
+    distance ``a`` from every wall): that is the convention of the box (whose area is
+    used the same way), it needs no disk radius (mixtures), and with it the virial
+    pressure of a large container tends to the bulk pressure.  Pass ``area`` for walls
+    that :func:`container_area` does not recognise as closed (a chamber closed by
+    segments together with the box walls, segments whose ends do not meet).
 
     For a walled rectangular box of equal disks of radius ``a`` the virial theorem with
     the wall forces included reads exactly (in the time average)
@@ -222,9 +313,29 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
     ``~ 2a / L``; in a channel (periodic along the walls) ``wall_pressure`` is the bulk
     pressure normal to the walls.
 
-    With immovable disks or wall segments ``pressure`` keeps its formula but is no
-    longer a thermodynamic pressure (the obstacles' virial is not included).  A
-    collision with an immovable disk adds to ``collisions`` like any other.
+    The same holds in a container of wall segments.  A contact on a side pushes the
+    disk along the side's unit normal ``n`` (towards the disk), whose centre is then at
+    distance ``a`` from the side's line ``s . n = const`` (``s`` any point of it), so the
+    virial theorem reads ``2 P A = sum_sides F_side (-(s . n) - a)`` (plus the end-point
+    contacts), with ``F_side = segment_pressures * length`` the mean normal force on
+    the side; the origin drops out because the mean forces balance.  For a convex
+    container at uniform wall pressure ``p`` this is ``P A = p (A - a L / 2)``, ``L``
+    its perimeter (exactly, whatever the pressure's profile, for a regular polygon):
+    ``segment_pressure`` exceeds ``pressure`` by the surface term ``a L / (2 A)``.
+    On a flat stretch of wall away from the corners the force per length is the bulk
+    pressure of the gas at its density away from the walls (the contact theorem);
+    within ``a cot(theta / 2)`` of a corner of angle ``theta`` no centre touches a
+    side, so the mean over whole sides is lower by up to ``2 a cot(theta / 2)`` per
+    side length (measured in an octagon of sides 19 diameters at packing 0.25: the
+    middle thirds of the sides (-0.2 +- 0.4)% off the equation of state at the bulk
+    density, whole sides 1.7% below it, the corners' share being 2.2%; the virial
+    ``Z`` 0.6% above the equation of state at the mean density ``N / A``).
+
+    With immovable disks, or wall segments that do not close a container around the
+    disks, ``pressure`` keeps its formula but is no longer a thermodynamic pressure
+    (the obstacles' virial is not included; closed obstacles are taken out of ``A``).
+    The area of immovable disks is not taken out of ``A``.  A collision with an
+    immovable disk adds to ``collisions`` like any other.
 
     Parameters
     ----------
@@ -234,6 +345,9 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
         Length of the window, > 0.
     blocks : int, default 10
         Number of sub-windows for the error bars, >= 1.
+    area : float, optional
+        The area ``A`` of the pressure and of ``Z``, > 0.  Default: the container's
+        area, :func:`container_area` (see above).
 
     Returns
     -------
@@ -243,7 +357,7 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
     ------
     TypeError, ValueError
         For a ``sim`` that is not a Simulation, a non-positive or non-finite
-        ``duration``, or ``blocks < 1``.
+        ``duration`` or ``area``, or ``blocks < 1``.
 
     Examples
     --------
@@ -268,9 +382,12 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
         raise TypeError(f"measure() needs an edmd2d.Simulation, got {type(sim).__name__}")
     duration = as_positive_float("duration", duration)
     blocks = as_count("blocks", blocks, minimum=1)
+    if area is None:
+        area, area_source = _container(sim)
+    else:
+        area, area_source = as_positive_float("area", area), "given"
 
     box = sim.box
-    area = box.area
     n_all = len(sim)
     movable = np.isfinite(sim.masses)
     n = int(movable.sum())
@@ -302,6 +419,15 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
     kt_axes = np.mean(np.array(axis_temps), axis=0)
     box_imp = np.diff(np.array([a["box_impulse"] for a in edges_acc]), axis=0)
     seg_imp = edges_acc[-1]["segment_impulse"] - acc0["segment_impulse"]
+    seg_len = np.array([w.length for w in sim.walls]).reshape(-1, 1)
+    seg_vec = np.diff(np.array([a["segment_impulses"] for a in edges_acc]), axis=0)
+    seg_side = np.diff(np.array([a["segment_side_impulses"] for a in edges_acc]), axis=0)
+    seg_contacts = edges_acc[-1]["segment_contacts"] - acc0["segment_contacts"]
+    # The sides the disks reach: those touched since the simulation was created (not
+    # only in this window, which would leave out, in a short window, the sides that
+    # happened not to be touched, and bias the mean upwards).
+    touched = edges_acc[-1]["segment_side_impulses"] > 0.0  # (S, 2)
+    touched_length = float((seg_len * touched).sum())
     temps = np.array(temps)
     kt_block = 0.5 * (temps[1:] + temps[:-1])
     n_coll = np.diff(coll)
@@ -325,6 +451,15 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
             wall_err = _stderr(wall_p_block)
         else:
             wall_p, wall_err = math.nan, math.nan
+        seg_forces = seg_vec.sum(axis=0) / duration
+        seg_forces_err = _stderr(seg_vec / tau)
+        seg_pressures = seg_side.sum(axis=0) / (duration * seg_len)
+        seg_pressures_err = _stderr(seg_side / (tau * seg_len))
+        if touched_length > 0.0:
+            seg_p = float(seg_side[:, touched].sum() / (duration * touched_length))
+            seg_p_err = _stderr(seg_side[:, touched].sum(axis=1) / (tau * touched_length))
+        else:
+            seg_p, seg_p_err = math.nan, math.nan
     mean_speed = float(np.mean(speeds))
     return Measurement(
         duration=float(duration),
@@ -351,6 +486,14 @@ def measure(sim, duration: float, *, blocks: int = 10) -> Measurement:
         wall_pressure_error=wall_err,
         box_wall_pressures=tuple(float(p) if w else math.nan for p, w in zip(per_wall, walled)),
         segment_force=float(seg_imp / duration),
+        area_source=area_source,
+        segment_contacts=_frozen(seg_contacts),
+        segment_forces=_frozen(seg_forces),
+        segment_forces_error=_frozen(seg_forces_err),
+        segment_pressures=_frozen(seg_pressures),
+        segment_pressures_error=_frozen(seg_pressures_err),
+        segment_pressure=seg_p,
+        segment_pressure_error=seg_p_err,
     )
 
 
@@ -373,12 +516,211 @@ def _mean_speed(sim, movable: np.ndarray) -> float:
     return float(np.mean(np.hypot(v[:, 0], v[:, 1]))) if len(v) else math.nan
 
 
-def _stderr(values: np.ndarray) -> float:
-    """Standard error of the mean of independent block values (nan for fewer than 2)."""
+def _stderr(values: np.ndarray):
+    """Standard error of the mean of independent block values (nan for fewer than 2):
+    along the first axis, a float for 1-D ``values``, else an array."""
     values = np.asarray(values, dtype=float)
     if len(values) < 2:
-        return math.nan
-    return float(np.std(values, ddof=1) / math.sqrt(len(values)))
+        return math.nan if values.ndim == 1 else np.full(values.shape[1:], math.nan)
+    err = np.std(values, axis=0, ddof=1) / math.sqrt(len(values))
+    return float(err) if values.ndim == 1 else err
+
+
+def _frozen(values: np.ndarray) -> np.ndarray:
+    out = np.array(values)
+    out.flags.writeable = False
+    return out
+
+
+# --------------------------------------------------------------------------- containers
+def container_area(sim) -> float:
+    """The area of the container that holds the movable disks of ``sim``.
+
+    Closed polygons are found among the simulation's wall segments: loops of segments
+    in which each end point coincides with that of exactly one other segment (to
+    within ``1e-9`` of the box's larger side, as ``Wall.polygon`` builds them), that
+    cross neither themselves nor each other.  They cut the box into regions: the inside
+    of a polygon less the polygons directly inside it, and the box less the outermost
+    polygons.  The result is the total area (shoelace formula) of the regions that
+    hold a movable disk's centre: the box's area when no polygon is closed, the
+    octagon's for a gas in an octagonal container, the octagon's less the triangle's
+    when a triangular obstacle stands inside it, the box's less the triangle's for a
+    gas around a closed obstacle.
+
+    Open polylines, segments that branch (an end point shared by three or more
+    segments) and polygons that cross are left out: with the box walls or with each
+    other they may close a region that this function does not see (then pass
+    ``area=`` to :func:`measure`).  The area of immovable disks is not taken out.
+
+    Parameters
+    ----------
+    sim : Simulation
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    A gas inside a square container of side 10 in a 12 x 12 box:
+
+    >>> import edmd2d as ed
+    >>> walls = ed.Wall.polygon([(1, 1), (11, 1), (11, 11), (1, 11)])
+    >>> sim = ed.Simulation([[4.0, 4.0], [7.0, 6.0]], [[1.0, 0.0], [0.0, 1.0]],
+    ...                     radii=0.5, box=ed.Box(12, 12, periodic=False), walls=walls)
+    >>> container_area(sim)
+    100.0
+    """
+    return _container(sim)[0]
+
+
+def _container(sim) -> tuple[float, str]:
+    """``(area, source)`` of :func:`container_area`; ``source`` is ``"box"`` when no
+    closed polygon bounds the regions of the disks, else ``"walls"``."""
+    box = sim.box
+    loops = _closed_loops(tuple(sim.walls), _COINCIDE * max(box.width, box.height))
+    if not loops:
+        return box.area, "box"
+    areas = np.array([abs(_shoelace(v)) for v in loops])
+    # (Loops do not cross: one vertex tells whether a loop lies inside another.)
+    first = np.array([v[0] for v in loops])
+    inside = np.array([_inside_polygon(first, v) for v in loops])  # [a, b]: b inside a
+    np.fill_diagonal(inside, False)
+    # The region of a loop is its inside less that of its children: the loops inside
+    # it and inside no smaller loop that is inside it.
+    parent = np.full(len(loops), -1)
+    for b in range(len(loops)):
+        holders = np.flatnonzero(inside[:, b])
+        if len(holders):
+            parent[b] = holders[np.argmin(areas[holders])]
+    region = areas.copy()
+    outer = box.area
+    for b in range(len(loops)):
+        if parent[b] >= 0:
+            region[parent[b]] -= areas[b]
+        else:
+            outer -= areas[b]
+    # Each disk is in the region of the smallest loop that holds it (or outside all).
+    centres = sim.positions[np.isfinite(sim.masses)]
+    holds = np.array([_inside_polygon(centres, v) for v in loops])  # (loops, disks)
+    innermost = np.where(holds, areas[:, None], np.inf).argmin(axis=0)
+    innermost[~holds.any(axis=0)] = -1
+    occupied = np.unique(innermost)
+    total = sum(outer if k < 0 else float(region[k]) for k in occupied)
+    return float(total), "walls"
+
+
+@functools.lru_cache(maxsize=16)
+def _closed_loops(walls: tuple, tol: float) -> tuple[np.ndarray, ...]:
+    """The closed polygons among ``walls`` (see :func:`container_area`), each as its
+    vertices in order, shape (V, 2); none if two of them (or one with itself) cross
+    or touch.  (Cached: a simulation's walls never change, and :func:`measure` may
+    be called many times; the arrays returned are read-only.)"""
+    # Vertex ids: end points within tol of each other share one (grid of side tol,
+    # looked up in the 3 x 3 neighbouring cells).
+    cells: dict[tuple[int, int], list[int]] = {}
+    vertices: list[tuple[float, float]] = []
+    ends = []
+    for w in walls:
+        for x, y in (w.start, w.end):
+            key = (math.floor(x / tol), math.floor(y / tol))
+            found = next((v for dx in (-1, 0, 1) for dy in (-1, 0, 1)
+                          for v in cells.get((key[0] + dx, key[1] + dy), ())
+                          if abs(vertices[v][0] - x) <= tol
+                          and abs(vertices[v][1] - y) <= tol), -1)
+            if found < 0:
+                found = len(vertices)
+                vertices.append((x, y))
+                cells.setdefault(key, []).append(found)
+            ends.append(found)
+    edges = [(ends[2 * k], ends[2 * k + 1]) for k in range(len(walls))
+             if ends[2 * k] != ends[2 * k + 1]]
+    at: dict[int, list[int]] = {}
+    for e, (u, v) in enumerate(edges):
+        at.setdefault(u, []).append(e)
+        at.setdefault(v, []).append(e)
+    # Walk from each unvisited edge; a walk through vertices of two edges each that
+    # comes back to its start is a loop.
+    loops, loop_edges = [], []
+    seen = [False] * len(edges)
+    for e0 in range(len(edges)):
+        if seen[e0]:
+            continue
+        order, path = [edges[e0][0]], [e0]
+        seen[e0] = True
+        e, v, closed = e0, edges[e0][1], False
+        while len(at[v]) == 2:
+            if v == order[0]:
+                closed = True
+                break
+            order.append(v)
+            e = at[v][0] if at[v][1] == e else at[v][1]
+            if seen[e]:
+                break
+            seen[e] = True
+            path.append(e)
+            v = edges[e][1] if edges[e][0] == v else edges[e][0]
+        # (A walk that stops at an end point or a branch marks its edges seen: a loop
+        # through a branch point is not simple and is left out.)
+        if closed and len(order) >= 3 and len(at[order[0]]) == 2:
+            loop = np.array([vertices[u] for u in order])
+            loop.flags.writeable = False
+            loops.append(loop)
+            loop_edges.extend(edges[k] for k in path)
+    if not loops or _any_crossing(np.array(vertices), loop_edges):
+        return ()
+    return tuple(loops)
+
+
+def _any_crossing(vertices: np.ndarray, edges) -> bool:
+    """Whether two of the segments ``edges`` (pairs of vertex ids) that share no vertex
+    cross or touch."""
+    u = np.array([e[0] for e in edges])
+    v = np.array([e[1] for e in edges])
+    a, b = vertices[u], vertices[v]
+
+    def orient(p, q, r):  # (p, q: (m, 1, 2); r: (1, n, 2))
+        return ((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1])
+                - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
+
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    step = max(1, 2_000_000 // max(1, len(edges)))  # (rows per chunk: bounded memory)
+    for s in range(0, len(edges), step):
+        pa, pb = a[s:s + step, None], b[s:s + step, None]
+        qa, qb = a[None], b[None]
+        cross = ((orient(pa, pb, qa) * orient(pa, pb, qb) <= 0.0)
+                 & (orient(qa, qb, pa) * orient(qa, qb, pb) <= 0.0)
+                 # (collinear segments: the orientations vanish; overlap decides)
+                 & (lo[s:s + step, None] <= hi[None]).all(axis=-1)
+                 & (lo[None] <= hi[s:s + step, None]).all(axis=-1))
+        share = ((u[s:s + step, None] == u[None]) | (u[s:s + step, None] == v[None])
+                 | (v[s:s + step, None] == u[None]) | (v[s:s + step, None] == v[None]))
+        if (cross & ~share).any():
+            return True
+    return False
+
+
+def _shoelace(vertices: np.ndarray) -> float:
+    """Signed area of a polygon (positive when counterclockwise)."""
+    x, y = vertices[:, 0], vertices[:, 1]
+    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+
+
+def _inside_polygon(points: np.ndarray, vertices: np.ndarray) -> np.ndarray:
+    """Whether each point (shape (P, 2)) lies inside the polygon (even-odd rule: a
+    ray towards +x crosses its sides an odd number of times)."""
+    x0, y0 = vertices[:, 0], vertices[:, 1]
+    x1, y1 = np.roll(x0, -1), np.roll(y0, -1)
+    out = np.zeros(len(points), bool)
+    step = max(1, 2_000_000 // len(vertices))  # (points per chunk: bounded memory)
+    for s in range(0, len(points), step):
+        px = points[s:s + step, 0:1]
+        py = points[s:s + step, 1:2]
+        spans = (y0 > py) != (y1 > py)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x_cross = x0 + (py - y0) * (x1 - x0) / (y1 - y0)
+        out[s:s + step] = (spans & (px < x_cross)).sum(axis=1) % 2 == 1
+    return out
 
 
 @dataclass(frozen=True)

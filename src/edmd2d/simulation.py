@@ -224,6 +224,8 @@ class Simulation:
         else:
             self._wa = np.zeros((0, 2))
             self._wb = np.zeros((0, 2))
+        # Each segment's impulses and contacts (layout.W_*), summed by the engine.
+        self._wacc = np.zeros((len(wall_list), _layout.N_WACC))
         self._cell_size = cell_size
         self._build_grid(pos, dmax, cell_size)
         self._check_overlaps(pos, rad)
@@ -400,6 +402,9 @@ class Simulation:
         acc = state["_acc"]
         if len(acc) < _layout.N_ACC:
             state["_acc"] = np.concatenate([acc, np.zeros(_layout.N_ACC - len(acc))])
+        # Saved before the impulses were summed per segment: none summed yet (the total
+        # over all segments, acc[A_SEGMENTS], is kept).
+        state.setdefault("_wacc", np.zeros((len(state["_wa"]), _layout.N_WACC)))
         vars(self).update(state)
 
     def _wall_args(self):
@@ -412,7 +417,8 @@ class Simulation:
         return _loop.run(
             t_end, max_collisions, max_events, mode, out, info, particles,
             (self._gi, self._gf, self._head), self._wall_args(),
-            (self._hv, self._qhead, self._qs, self._qf), (self._counts, self._acc),
+            (self._hv, self._qhead, self._qs, self._qf),
+            (self._counts, self._acc, self._wacc),
             (self._log_t, self._log_e, self._log_n),
             None if self._model is None else self._model.engine_params(),
         )
@@ -768,14 +774,34 @@ class Simulation:
     def _accumulators(self) -> dict:
         """Raw sums since creation: the collision virial ``sum J |r_ij|``, its diagonal
         components ``sum J |r_ij| n_x^2`` and ``n_y^2`` (``n`` the contact normal), and the
-        impulses on the box walls and on the wall segments."""
+        impulses on the walls (``J`` the impulse magnitude of a contact):
+
+        - ``"box_impulse"``, shape (4,): ``sum J`` on each box wall (x=0, x=width, y=0,
+          y=height);
+        - ``"segment_impulse"``: ``sum J`` over all wall segments;
+        - ``"segment_impulses"``, shape (S, 2): the impulse vector each segment received,
+          ``sum -J n`` (``n`` the unit normal from the segment to the disk);
+        - ``"segment_side_impulses"``, shape (S, 2): ``sum J`` over the contacts on each
+          side of each segment, left then right (the left side lies to the left going
+          from ``start`` to ``end``: counterclockwise polygons have their inside there);
+        - ``"segment_end_impulses"``, shape (S,): ``sum J`` at each segment's end points;
+        - ``"segment_contacts"``, shape (S,): contact events of each segment (as counted
+          in ``counts.wall_collisions``).
+
+        Over all segments, the side and end-point sums add up to ``"segment_impulse"``
+        (to rounding)."""
         a = self._acc
+        w = self._wacc
         return {
             "virial": float(a[_layout.A_VIRIAL]),
             "virial_xx": float(a[_layout.A_VIRIAL_XX]),
             "virial_yy": float(a[_layout.A_VIRIAL_YY]),
             "box_impulse": a[_layout.A_BOX:_layout.A_BOX + 4].copy(),
             "segment_impulse": float(a[_layout.A_SEGMENTS]),
+            "segment_impulses": w[:, _layout.W_FX:_layout.W_FY + 1].copy(),
+            "segment_side_impulses": w[:, _layout.W_LEFT:_layout.W_RIGHT + 1].copy(),
+            "segment_end_impulses": w[:, _layout.W_ENDS].copy(),
+            "segment_contacts": w[:, _layout.W_CONTACTS].astype(np.int64),
         }
 
     def _record_events(self, capacity: int) -> None:

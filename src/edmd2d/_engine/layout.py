@@ -185,6 +185,20 @@ A_VIRIAL_YY = 7
 A_DISSIPATED = 8
 N_ACC = 9
 
+# Per-segment tallies (wacc[k, ...], one row per wall segment k, beside acc[A_SEGMENTS],
+# their total): the impulse vector the segment received, the sum of -J n over its
+# contacts (n the unit normal from the segment to the disk, J the impulse magnitude);
+# J summed over the contacts on each side (left: the side that (-(by - ay), bx - ax)
+# points to, on the left going from start a to end b) and at the two end points; and
+# the number of contact events (counted like counts[C_WALL], impulse or not).
+W_FX = 0
+W_FY = 1
+W_LEFT = 2
+W_RIGHT = 3
+W_ENDS = 4
+W_CONTACTS = 5
+N_WACC = 6
+
 # Modes of run(): process events, or predict every disk afresh and rebuild the queue
 RUN_EVENTS = 0
 PREDICT_ALL = 1

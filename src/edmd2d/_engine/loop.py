@@ -33,8 +33,9 @@ The state comes in bundles (tuples of arrays, unpacked at the top of :func:`run`
 ``calendar = (hv, qhead, qs, qf)``
     the calendar queue's heap, list heads and scalars (``qt`` and the links are in
     ``E``);
-``tallies = (counts, acc)``
-    event counters and accumulated impulses (``layout.C_*``, ``layout.A_*``);
+``tallies = (counts, acc, wacc)``
+    event counters and accumulated impulses (``layout.C_*``, ``layout.A_*``), and the
+    impulses and contacts of each wall segment (``wacc[k]``, ``layout.W_*``);
 ``log = (log_t, log_e, log_n)``
     the event log (capacity ``len(log_t)``);
 ``model``
@@ -121,7 +122,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
     gi, gf, head = grid
     wa, wb, wstart, wwall, wsx, wsy = walls
     hv, qhead, qs, qf = calendar
-    counts, acc = tallies
+    counts, acc, wacc = tallies
     log_t, log_e, log_n = log
     ncx = gi[0]
     ncy = gi[1]
@@ -229,8 +230,8 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                     break
                 drift(i, t, S)
                 # (One call site: each inlined copy lengthens the first compilation.)
-                response.collide_wall(i, t, kind, partner, aux, S, invm, acc, gf, wa, wb,
-                                      model)
+                response.collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf,
+                                      wa, wb, model)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1

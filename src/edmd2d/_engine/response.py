@@ -38,6 +38,12 @@ from .layout import (
     BOX,
     VX,
     VY,
+    W_CONTACTS,
+    W_ENDS,
+    W_FX,
+    W_FY,
+    W_LEFT,
+    W_RIGHT,
     X,
     Y,
     unpack_segment,
@@ -141,17 +147,20 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, model):
 
 
 @njit(inline="always")
-def collide_wall(i, t, kind, partner, aux, S, invm, acc, gf, wa, wb, model):
+def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model):
     """Resolve the contact of disk ``i`` (at time ``t``) with box wall ``aux`` (``kind``
     BOX: x=0, x=width, y=0, y=height) or with the wall segment ``partner`` (its side or
     an end point, and its image shift, packed in ``aux``), and add the impulse to that
-    wall's tally."""
+    wall's tally: ``acc[A_BOX + aux]`` for a box wall; ``acc[A_SEGMENTS]`` (all segments)
+    and row ``partner`` of ``wacc`` (the segment's vector, side or end-point and contact
+    tallies, ``layout.W_*``) for a segment."""
     if kind == BOX:
         # Lower wall: normal +e; upper wall: normal -e.
         sign = 1.0 if aux % 2 == 0 else -1.0
         nx = sign if aux < 2 else 0.0
         ny = 0.0 if aux < 2 else sign
         slot = A_BOX + aux
+        col = W_LEFT  # (unused for a box wall)
     else:
         part, code = unpack_segment(aux)
         sx, sy = unpack_shift(code)
@@ -167,9 +176,11 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, gf, wa, wb, model):
             ln = math.sqrt(ux * ux + uy * uy)
             nx = -uy / ln
             ny = ux / ln
+            col = W_LEFT
             if (S[i, X] - ax) * nx + (S[i, Y] - ay) * ny < 0.0:
                 nx = -nx
                 ny = -ny
+                col = W_RIGHT
         else:
             ex = ax if part == 1 else bx
             ey = ay if part == 1 else by
@@ -178,12 +189,20 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, gf, wa, wb, model):
             ln = math.sqrt(nx * nx + ny * ny)
             nx /= ln
             ny /= ln
+            col = W_ENDS
         slot = A_SEGMENTS
+        wacc[partner, W_CONTACTS] += 1.0
     # Mirror the normal velocity (scaled by e), if approaching.
     vn = S[i, VX] * nx + S[i, VY] * ny
     if vn < 0.0:
         f = _wall_factor(i, t, vn, invm[i], acc, model)
         S[i, VX] -= f * vn * nx
         S[i, VY] -= f * vn * ny
-        acc[slot] += -f * vn / invm[i]
+        impulse = -f * vn / invm[i]
+        acc[slot] += impulse
+        if kind != BOX:
+            # The disk receives J n, the segment -J n.
+            wacc[partner, W_FX] -= impulse * nx
+            wacc[partner, W_FY] -= impulse * ny
+            wacc[partner, col] += impulse
     _note_collision(i, t, invm, model)

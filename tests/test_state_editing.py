@@ -129,3 +129,23 @@ def test_viz_without_matplotlib_names_the_extra():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          env=dict(os.environ), timeout=120, check=True).stdout
     assert "pip install 'edmd2d[viz]'" in out
+
+
+def test_a_run_the_clock_cannot_resolve_is_refused():
+    # At speed 1e300 a disk crosses a cell in 1e-300: from t ~ 1e-285 on, the float64
+    # clock could not tell two crossings apart and would stop.
+    box = ed.Box(20.0, 20.0)
+    sim = ed.Simulation([[5.0, 5.0], [15.0, 15.0]], [[1e300, 0.0], [0.0, 1.0]], 0.5, box=box)
+    with pytest.raises(ValueError, match="float64 clock cannot resolve"):
+        sim.advance(until=1.0)
+    assert sim.time == 0.0
+    # A count of collisions is checked at the current time: at t = 1e17 (resolution
+    # 16) a crossing every 2.5 is lost.
+    late = ed.Simulation([[5.0, 5.0], [15.0, 15.0]], [[4.0, 0.0], [0.0, 0.0]], 0.5, box=box,
+                         time=1e17)
+    with pytest.raises(ValueError, match="float64 clock cannot resolve"):
+        late.advance(collisions=1)
+    # Ordinary fast disks are fine (no tunnelling at 1e12 either).
+    fast = ed.Simulation([[5.0, 5.0], [15.0, 15.0]], [[1e12, 3.0], [0.0, 1.0]], 0.5, box=box)
+    fast.advance(until=1e-5)
+    assert fast.counts.cell_crossings > 5e5

@@ -479,8 +479,8 @@ class Simulation:
         ----------
         until : float, optional
             Process every event up to and including this time, then let all disks
-            drift to it (seed section 3); afterwards ``time == until``.  Must not be
-            earlier than :attr:`time`.
+            fly on to it; afterwards ``time == until``.  Must not be earlier than
+            :attr:`time`.
         collisions : int, optional
             Stop right after this many further disk-disk collisions; :attr:`time` is
             then the time of the last one.  ``0`` does nothing.
@@ -495,11 +495,23 @@ class Simulation:
         Raises
         ------
         TypeError, ValueError
-            For missing or invalid arguments; the simulation is left unchanged.
+            For missing or invalid arguments, or a run to a time at which the float64
+            clock could no longer tell a disk's cell crossings apart (a speed far too
+            large for the time scale); the simulation is left unchanged.
         RuntimeError
             If two immovable disks meet, or a moving immovable disk reaches a wall, or
-            ``collisions`` is requested when no further event can ever happen.  The
-            simulation then stands at the last event processed before the problem.
+            ``collisions`` is requested when no further event can ever happen, or an
+            inelastic collapse that the TC model does not end.  The simulation then
+            stands at the last event processed before the problem.
+
+        Examples
+        --------
+        >>> import edmd2d as ed
+        >>> sim = ed.make_gas(100, 0.3, seed=1)
+        >>> sim.advance(until=2.0).time
+        2.0
+        >>> sim.advance(collisions=50).counts.collisions >= 50
+        True
         """
         if until is None and collisions is None:
             raise TypeError("advance() needs until= (a time) or collisions= (a count)")
@@ -517,6 +529,7 @@ class Simulation:
             if max_coll == 0:
                 return self
 
+        self._check_clock_resolves_crossings(t_end)
         remaining = max_coll
         out = np.array([self._time])
         info = np.full(2, -1, np.int64)
@@ -549,6 +562,27 @@ class Simulation:
                 f"{remaining} of the {max_coll} requested collisions cannot occur"
             )
         raise self._engine_error(status, int(info[0]), int(info[1]))
+
+    def _max_speed(self) -> float:
+        return float(np.hypot(self._S[:, _layout.VX], self._S[:, _layout.VY]).max())
+
+    def _cell_side(self) -> float:
+        return float(min(self._gf[2], self._gf[3]))
+
+    def _check_clock_resolves_crossings(self, t_end: float) -> None:
+        """Refuse a run to ``t_end`` at whose end the float64 clock could no longer
+        tell a disk's successive cell crossings apart (they are events: the clock would
+        stop, and the run never end)."""
+        horizon = max(abs(self._time), abs(t_end) if math.isfinite(t_end) else 0.0)
+        v = self._max_speed()
+        if v > 0.0 and self._cell_side() / v <= 64.0 * np.spacing(horizon):
+            raise ValueError(
+                f"a disk at speed {v:.3g} crosses a grid cell (side {self._cell_side():.3g}) "
+                f"in {self._cell_side() / v:.3g}, which the float64 clock cannot resolve at "
+                f"t={horizon:.6g} (its resolution there is {np.spacing(horizon):.3g}): "
+                "the run could not advance.  Use smaller speeds (a slower unit of time) "
+                "or a shorter run."
+            )
 
     def _engine_error(self, status: int, i: int, j: int) -> RuntimeError:
         """The exception for an error status of the engine, which stopped before the
@@ -590,6 +624,7 @@ class Simulation:
 
     # ------------------------------------------------------------------ state
     def __len__(self) -> int:
+        """The number of disks."""
         return len(self._S)
 
     def __repr__(self) -> str:

@@ -12,7 +12,8 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 MODULES = ["edmd2d", "edmd2d.geometry", "edmd2d.simulation", "edmd2d.builders",
-           "edmd2d.reference"]
+           "edmd2d.reference", "edmd2d.viz", "edmd2d.analysis", "edmd2d.measurements",
+           "edmd2d.models", "edmd2d.theory"]
 
 
 @pytest.mark.parametrize("name", MODULES)

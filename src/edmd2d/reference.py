@@ -1,4 +1,4 @@
-"""Brute-force reference engine: seed section 3, literally, in plain Python.
+"""Brute-force reference engine: the plain event loop, in plain Python.
 
 At every step it examines *every* pair of disks (with all periodic images) and *every*
 disk against every wall, box wall and wall end point, takes the earliest contact, moves
@@ -47,10 +47,10 @@ def _dot(a, b):
 
 
 def circle_contact_time(p, v, d):
-    """Seed 4.1: earliest t >= 0 with |p + t v| = d, for an approaching pair, else inf.
+    """Earliest t >= 0 with |p + t v| = d, for an approaching pair, else inf.
 
-    ``p`` and ``v`` are the relative position and velocity.  Written exactly as in the
-    seed: t = -(v.p + sqrt((v.p)^2 - v^2 (p^2 - d^2))) / v^2.
+    ``p`` and ``v`` are the relative position and velocity.  Written as the textbook
+    root: t = -(v.p + sqrt((v.p)^2 - v^2 (p^2 - d^2))) / v^2.
     """
     vp = _dot(v, p)
     if vp >= 0:  # not approaching: no collision
@@ -64,7 +64,7 @@ def circle_contact_time(p, v, d):
 
 
 def segment_contact_time(p, v, r, a, b):
-    """Seed 4.2 plus end points: earliest contact of a circle (p, v, r) with segment a-b.
+    """Earliest contact of a circle (p, v, r) with the segment a-b: its side or an end point.
 
     Returns (t, part) with part "side", "start" or "end"; (inf, None) if none.
     """
@@ -324,7 +324,7 @@ class ReferenceSimulation:
         self.wall_collisions += 1
 
     def advance(self, until=None, collisions=None):
-        """Seed section 3: events in time order up to ``until`` / ``collisions``."""
+        """Events in time order up to ``until`` / ``collisions``."""
         target = INF if until is None else float(until)
         todo = INF if collisions is None else int(collisions)
         done = 0

@@ -156,6 +156,16 @@ def draw(
     TypeError, ValueError
         For a non-Simulation ``sim``, an ``ax`` that is not an Axes, an unknown
         ``color_by`` or one of the wrong length, and the like.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import edmd2d as ed
+    >>> from edmd2d import viz
+    >>> ax = viz.draw(ed.make_gas(30, 0.3, seed=1), color_by="speed")
+    >>> [c.get_gid() for c in ax.collections][:1]
+    ['edmd2d-disks']
     """
     scene = _Scene(
         sim, ax, color_by=color_by, cmap=cmap, vmin=vmin, vmax=vmax, color=color,
@@ -236,6 +246,20 @@ def animate(
         For invalid arguments (as for :func:`draw`, plus a non-positive ``duration``,
         ``fps`` or ``time_per_second``, a negative ``trail``, out-of-range
         ``trail_disks`` and unknown keywords).
+
+    Examples
+    --------
+    Five frames per unit of simulated time for one unit: six frames, the first the
+    current state, each at its exact time.
+
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import edmd2d as ed
+    >>> from edmd2d import viz
+    >>> anim = viz.animate(ed.make_gas(30, 0.3, seed=1), duration=1.0, fps=5,
+    ...                    time_per_second=1.0)
+    >>> anim.frame_times.tolist()
+    [0.0, 0.2, 0.4, 0.6000000000000001, 0.8, 1.0]
     """
     if not isinstance(sim, Simulation):
         raise TypeError(f"sim must be an edmd2d.Simulation, got {type(sim).__name__}")
@@ -436,6 +460,21 @@ def save(
     RuntimeError
         For a video when no ffmpeg can be found, or a writer whose program is missing
         (with what to install); for an animation that was already played or saved.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import tempfile, pathlib
+    >>> import edmd2d as ed
+    >>> from edmd2d import viz
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> anim = viz.animate(ed.make_gas(30, 0.3, seed=1), duration=0.4, fps=5,
+    ...                    time_per_second=1.0)
+    >>> viz.save(anim, folder / "gas.gif", progress=False).stat().st_size > 0
+    True
+    >>> viz.save(ed.make_gas(30, 0.3, seed=1), folder / "gas.png").suffix
+    '.png'
     """
     path = Path(path)
     if isinstance(obj, Simulation):

@@ -1,4 +1,4 @@
-"""The event loop (seed section 3): the algorithm, one scheduled event per disk.
+"""The event loop: the algorithm, one scheduled event per disk.
 
 Pop the earliest event; if it was predicted against a partner that has changed course
 since, predict its disk afresh; otherwise bring the disks involved to its time, let the

@@ -1,4 +1,4 @@
-"""Exact contact times (seed sections 4.1 and 4.2) and cell-exit times.
+"""Exact contact times (disk-disk, disk-segment and segment end points) and cell-exit times.
 
 All functions return a time *interval* ``dt >= 0`` measured from the moment the
 positions were taken, or ``inf`` for "never".  A tiny negative root produced by
@@ -18,7 +18,7 @@ INF = math.inf
 @njit
 def pair_time(dx, dy, dvx, dvy, d):
     """Time until two circles with separation ``(dx, dy)`` and relative velocity
-    ``(dvx, dvy)`` come to the distance ``d`` (seed 4.1), or ``inf``.
+    ``(dvx, dvy)`` come to the distance ``d``, or ``inf``.
 
     With ``b = dp.dv``, ``c = dp^2 - d^2`` and ``disc = b^2 - dv^2 c`` the earlier root of
     ``dv^2 t^2 + 2 b t + c = 0`` is ``(-b - sqrt(disc)) / dv^2``.  For an approaching pair
@@ -42,18 +42,19 @@ def pair_time(dx, dy, dvx, dvy, d):
 
 @njit
 def segment_time(x, y, vx, vy, r, ax, ay, bx, by):
-    """First contact of a moving circle with the segment ``a -> b`` (seed 4.2 plus caps).
+    """First contact of a moving circle with the segment ``a -> b`` (its side, or else an
+    end point).
 
     Returns ``(dt, part)`` with ``part`` 0 for the side of the segment, 1 for the end
     point ``a`` and 2 for ``b``; ``(inf, -1)`` if never.
 
     The side: with ``n`` the unit normal of the segment, ``h = (p - a).n`` the signed
-    distance and ``w = v.n`` the normal velocity, the seed's quadratic for the normal
+    distance and ``w = v.n`` the normal velocity, the contact quadratic for the normal
     components reads ``w^2 t^2 + 2 h w t + h^2 - r^2 = 0``; its discriminant is exactly
     ``w^2 r^2``, so the earlier root is ``(|h| - r) / |w|`` when the circle approaches the
     line (``h w < 0``) -- no square root and no cancellation.  The contact counts only if
     the foot point lies on the segment (``0 <= s <= 1``).  Otherwise the first contact,
-    if any, is with an end point, a circle of radius 0 (seed 4.1 with ``d = r``).
+    if any, is with an end point, a circle of radius 0 (:func:`pair_time` with ``d = r``).
     """
     ux = bx - ax
     uy = by - ay

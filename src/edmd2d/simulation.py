@@ -784,7 +784,30 @@ class Simulation:
     def set_velocities(self, velocities) -> None:
         """Replace all velocities at the current time (e.g. to rescale the temperature).
 
-        All predicted events are recomputed.  Raises like the constructor on bad input.
+        Parameters
+        ----------
+        velocities : array_like, shape (N, 2)
+            The new velocities, in the user's disk order.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As the constructor: a wrong shape, non-finite values, a moving disk that
+            fills the box between two walls.  The simulation is left unchanged.
+
+        Notes
+        -----
+        Positions, counts and the clock are kept; every predicted event is recomputed.
+
+        Examples
+        --------
+        Doubling the temperature (speeds times sqrt 2):
+
+        >>> import edmd2d as ed
+        >>> sim = ed.make_gas(100, 0.3, temperature=1.0, seed=1)
+        >>> sim.set_velocities(sim.velocities * 2 ** 0.5)
+        >>> round(ed.kinetic_temperature(sim), 12)
+        2.0
         """
         vel = as_float_array("velocities", velocities, (len(self), 2))
         self._check_room(vel, self.radii)

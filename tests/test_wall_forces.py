@@ -332,7 +332,11 @@ def test_container_area_falls_back_to_the_box():
     for name, walls in cases.items():
         positions = ((3.0, 5.0), (3.0, 6.5))
         sim = two_disks(box, walls, positions)
-        assert measurements.container_area(sim) == box.area, name
+        if "crossing" in name:  # (closed loops that cross: said, not silent)
+            with pytest.warns(UserWarning, match="cross or touch"):
+                assert measurements.container_area(sim) == box.area, name
+        else:
+            assert measurements.container_area(sim) == box.area, name
         assert sim.measure(duration=1.0).area_source == "box", name
 
 
@@ -447,3 +451,21 @@ def test_gas_in_an_octagon_reproduces_the_equation_of_state():
     assert abs(z_virial - z_eos) < surface * z_eos + K_SIGMA * err[2], (z_virial, z_eos)
     assert sim.box.area > 2 * area
     assert abs(z_virial * area / sim.box.area - z_eos) > 0.4 * z_eos
+
+
+def test_container_area_edge_cases_warn_or_fall_back():
+    import warnings as _warnings
+
+    box = ed.Box(10.0, 10.0, periodic=False)
+    square = ed.Wall.polygon([(1.0, 1.0), (9.0, 1.0), (9.0, 9.0), (1.0, 9.0)])
+    a = ed.Wall.polygon([(3.0, 3.0), (5.0, 3.0), (5.0, 5.0), (3.0, 5.0)])
+    b = ed.Wall.polygon([(4.0, 4.0), (6.0, 4.0), (6.0, 6.0), (4.0, 6.0)])  # crosses a
+    sim = ed.Simulation([[2.0, 2.0]], [[1.0, 0.3]], 0.5, box=box, walls=square + a + b)
+    with pytest.warns(UserWarning, match="cross or touch"):
+        assert measurements.container_area(sim) == 100.0
+    # No movable disk: nothing to hold, the box's area (and measure does not divide by 0).
+    peg = ed.Simulation([[5.0, 5.0]], [[0.0, 0.0]], 0.5, masses=np.inf, box=box,
+                        walls=square)
+    with _warnings.catch_warnings():
+        _warnings.simplefilter("error")
+        assert measurements.container_area(peg) == 100.0

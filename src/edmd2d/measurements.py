@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -547,10 +548,11 @@ def container_area(sim) -> float:
     when a triangular obstacle stands inside it, the box's less the triangle's for a
     gas around a closed obstacle.
 
-    Open polylines, segments that branch (an end point shared by three or more
-    segments) and polygons that cross are left out: with the box walls or with each
-    other they may close a region that this function does not see (then pass
-    ``area=`` to :func:`measure`).  The area of immovable disks is not taken out.
+    Open polylines and segments that branch (an end point shared by three or more
+    segments) are left out: with the box walls or with each other they may close a
+    region that this function does not see (then pass ``area=`` to :func:`measure`).
+    If two closed polygons cross or touch, no area can be told from them: the box's
+    area is used, with a warning.  The area of immovable disks is not taken out.
 
     Parameters
     ----------
@@ -602,6 +604,8 @@ def _container(sim) -> tuple[float, str]:
             outer -= areas[b]
     # Each disk is in the region of the smallest loop that holds it (or outside all).
     centres = sim.positions[np.isfinite(sim.masses)]
+    if len(centres) == 0:  # (no gas to hold: the box's area, as without containers)
+        return box.area, "box"
     holds = np.array([_inside_polygon(centres, v) for v in loops])  # (loops, disks)
     innermost = np.where(holds, areas[:, None], np.inf).argmin(axis=0)
     innermost[~holds.any(axis=0)] = -1
@@ -667,7 +671,14 @@ def _closed_loops(walls: tuple, tol: float) -> tuple[np.ndarray, ...]:
             loop.flags.writeable = False
             loops.append(loop)
             loop_edges.extend(edges[k] for k in path)
-    if not loops or _any_crossing(np.array(vertices), loop_edges):
+    if not loops:
+        return ()
+    if _any_crossing(np.array(vertices), loop_edges):
+        warnings.warn(
+            "closed loops of wall segments cross or touch: the container's area cannot be "
+            "told from them, and the box's area is used; pass measure(area=...)",
+            stacklevel=4,
+        )
         return ()
     return tuple(loops)
 

@@ -327,7 +327,7 @@ class SimulationAnimation(manim.FuncAnimation):
 
     def save(self, filename, writer=None, fps=None, dpi=None, codec=None, bitrate=None,
              extra_args=None, metadata=None, extra_anim=None, savefig_kwargs=None, *,
-             progress_callback=None) -> None:
+             progress_callback=None, colors=None) -> None:
         """Write the animation to a file: :func:`save` with matplotlib's signature.
 
         ``anim.save("run.mp4")`` is ``viz.save(anim, "run.mp4", progress=False)``: GIFs
@@ -336,7 +336,8 @@ class SimulationAnimation(manim.FuncAnimation):
         by name or as an instance is used as in matplotlib, except that one that cannot
         write the file is refused before the first frame is drawn, instead of falling
         back to Pillow.  The parameters are those of
-        :meth:`matplotlib.animation.Animation.save`.
+        :meth:`matplotlib.animation.Animation.save`, and ``colors`` as for :func:`save`
+        (colours per GIF frame).
 
         Raises
         ------
@@ -349,7 +350,7 @@ class SimulationAnimation(manim.FuncAnimation):
         options = {"writer": writer, "codec": codec, "bitrate": bitrate,
                    "extra_args": extra_args, "metadata": metadata,
                    "extra_anim": extra_anim, "savefig_kwargs": savefig_kwargs}
-        _save_animation(self, Path(filename), fps=fps, dpi=dpi, colors=None,
+        _save_animation(self, Path(filename), fps=fps, dpi=dpi, colors=colors,
                         progress=progress_callback or False,
                         **{k: v for k, v in options.items() if v is not None})
 

@@ -563,22 +563,17 @@ class Simulation:
             )
         raise self._engine_error(status, int(info[0]), int(info[1]))
 
-    def _max_speed(self) -> float:
-        return float(np.hypot(self._S[:, _layout.VX], self._S[:, _layout.VY]).max())
-
-    def _cell_side(self) -> float:
-        return float(min(self._gf[2], self._gf[3]))
-
     def _check_clock_resolves_crossings(self, t_end: float) -> None:
         """Refuse a run to ``t_end`` at whose end the float64 clock could no longer
         tell a disk's successive cell crossings apart (they are events: the clock would
         stop, and the run never end)."""
         horizon = max(abs(self._time), abs(t_end) if math.isfinite(t_end) else 0.0)
-        v = self._max_speed()
-        if v > 0.0 and self._cell_side() / v <= 64.0 * np.spacing(horizon):
+        v = float(np.hypot(self._S[:, _layout.VX], self._S[:, _layout.VY]).max())
+        side = float(min(self._gf[2], self._gf[3]))
+        if v > 0.0 and side / v <= 64.0 * np.spacing(horizon):
             raise ValueError(
-                f"a disk at speed {v:.3g} crosses a grid cell (side {self._cell_side():.3g}) "
-                f"in {self._cell_side() / v:.3g}, which the float64 clock cannot resolve at "
+                f"a disk at speed {v:.3g} crosses a grid cell (side {side:.3g}) "
+                f"in {side / v:.3g}, which the float64 clock cannot resolve at "
                 f"t={horizon:.6g} (its resolution there is {np.spacing(horizon):.3g}): "
                 "the run could not advance.  Use smaller speeds (a slower unit of time) "
                 "or a shorter run."

@@ -28,6 +28,7 @@ def make_gas(
     periodic=True,
     temperature: float = 1.0,
     seed=None,
+    gravity=None,
 ) -> Simulation:
     """A hard-disk gas at a given packing fraction, ready to run.
 
@@ -64,6 +65,9 @@ def make_gas(
         k_B T of the initial velocities, >= 0.
     seed : int, numpy.random.Generator or None
         Makes the vacancies, species order and velocities reproducible.
+    gravity : array_like, shape (2,), optional
+        A uniform acceleration of every disk (see :class:`~edmd2d.Simulation`).  The
+        start is still uniform: the gas settles into its height profile as it runs.
 
     Returns
     -------
@@ -122,7 +126,7 @@ def make_gas(
     pos = sites[pick]
     rad = rad[rng.permutation(n)] if radii is not None else rad
     vel = _maxwell_boltzmann(rng, mass, temperature, sum(box.periodic))
-    return Simulation(pos, vel, rad, mass, box=box)
+    return Simulation(pos, vel, rad, mass, box=box, gravity=gravity)
 
 
 def lattice_packing_limit(n: int, *, radius=0.5, radii=None, aspect=1.0, periodic=True) -> float:

@@ -69,9 +69,10 @@ class Counts:
 class Simulation:
     """An exact event-driven simulation of hard disks in a rectangular box.
 
-    Disks move on straight lines between collisions.  Every disk-disk and disk-wall
-    contact is found at its exact time from a quadratic equation (no time step), so no
-    collision is missed at any speed or over any interval.
+    Disks move on straight lines between collisions (on parabolas under ``gravity``).
+    Every disk-disk and disk-wall contact is found at its exact time from a quadratic
+    equation (a quartic, bracketed, for a falling disk against a fixed point), with no
+    time step, so no collision is missed at any speed or over any interval.
 
     Parameters
     ----------
@@ -113,6 +114,14 @@ class Simulation:
         of mean diameter needs to cross it at the initial root-mean-square speed.
         Used only when some coefficient is below 1; ``0`` turns the model off, and a
         run that collapses then stops with a ``RuntimeError``.
+    gravity : array_like, shape (2,), optional
+        A uniform acceleration ``(gx, gy)`` of every movable disk (immovable disks and
+        walls stay put): disks fly on exact parabolas between events.  Velocities then
+        change between events; every readout gives them at :attr:`time`, and
+        :meth:`potential_energy` and :meth:`total_energy` include ``m g.h``.  A movable
+        disk may not start at rest against a wall that gravity presses it into (a
+        resting contact is not an event-driven motion): lift it by a gap, or give it a
+        speed.
 
     Raises
     ------
@@ -159,6 +168,7 @@ class Simulation:
         restitution=1.0,
         wall_restitution=1.0,
         tc: float | None = None,
+        gravity=None,
     ) -> None:
         if box is None:
             raise TypeError("box is required: pass box=edmd2d.Box(width, height, periodic=...)")
@@ -179,6 +189,7 @@ class Simulation:
         t0 = as_float_array("time", time, ())
         self._box = box
         self._walls = tuple(wall_list)
+        self._gravity = _as_gravity(gravity)
         pos = self._check_in_box(pos, rad)
         self._check_walls_in_box()
         self._check_room(vel, rad)
@@ -229,6 +240,7 @@ class Simulation:
         self._cell_size = cell_size
         self._build_grid(pos, dmax, cell_size)
         self._check_overlaps(pos, rad)
+        self._check_resting(pos, vel, rad, mass)
 
         self._species = None if species is None else model[0]
         self._model = model[1]
@@ -312,6 +324,34 @@ class Simulation:
                     f"velocities: disks {indices_where(stuck)} fill the box between its "
                     f"walls on the {name} axis (diameter >= {length}) and cannot move "
                     f"along {name}; their {name}-velocity must be 0"
+                )
+
+    def _check_resting(self, pos: np.ndarray, vel: np.ndarray, rad: np.ndarray,
+                       mass: np.ndarray) -> None:
+        """Under gravity, a movable disk at rest against a box wall that gravity presses
+        it into would bounce without end at one instant (a resting contact is not a
+        motion of free flights and impulses): refuse it."""
+        g = self._gravity
+        if g is None:
+            return
+        box = self._box
+        movable = np.isfinite(mass)
+        for axis, length in enumerate((box.width, box.height)):
+            if box.periodic[axis] or g[axis] == 0.0:
+                continue
+            if g[axis] < 0.0:
+                touching = pos[:, axis] - rad <= _OVERLAP_TOL * rad
+            else:
+                touching = length - rad - pos[:, axis] <= _OVERLAP_TOL * rad
+            resting = movable & touching & (vel[:, axis] == 0.0)
+            if resting.any():
+                name = "xy"[axis]
+                wall = f"{name}=0" if g[axis] < 0.0 else f"{name}={length}"
+                raise ValueError(
+                    f"positions: disks {indices_where(resting)} rest on the box wall at "
+                    f"{wall} with zero {name}-velocity while gravity presses them into "
+                    f"it, which would take unboundedly many bounces at one instant; "
+                    "lift them by a small gap (or give them a velocity)"
                 )
 
     def _check_walls_in_box(self) -> None:
@@ -399,6 +439,7 @@ class Simulation:
         state.setdefault("_model", None)
         state.setdefault("_species", None)
         state.setdefault("_cell_size", None)
+        state.setdefault("_gravity", None)
         acc = state["_acc"]
         if len(acc) < _layout.N_ACC:
             state["_acc"] = np.concatenate([acc, np.zeros(_layout.N_ACC - len(acc))])
@@ -421,7 +462,13 @@ class Simulation:
             (self._counts, self._acc, self._wacc),
             (self._log_t, self._log_e, self._log_n),
             None if self._model is None else self._model.engine_params(),
+            self._flight(),
         )
+
+    def _flight(self):
+        """The engine's flight argument: ``None`` (straight lines) or gravity's."""
+        g = self._gravity
+        return None if g is None else (float(g[0]), float(g[1]), self._invm)
 
     def _queue_args(self):
         return (self._qt, self._E, self._hv, self._qhead, self._qs, self._qf)
@@ -568,7 +615,20 @@ class Simulation:
         tell a disk's successive cell crossings apart (they are events: the clock would
         stop, and the run never end)."""
         horizon = max(abs(self._time), abs(t_end) if math.isfinite(t_end) else 0.0)
-        v = float(np.hypot(self._S[:, _layout.VX], self._S[:, _layout.VY]).max())
+        vel = self._velocities()
+        v = float(np.hypot(vel[:, 0], vel[:, 1]).max())
+        if self._gravity is not None:
+            # The fastest a disk can become: gravity's work over the box, if every axis
+            # it acts along is walled (energy is conserved or lost), else its push for
+            # the whole run.
+            g = float(np.hypot(*self._gravity))
+            along_periodic = any(p and gk != 0.0 for p, gk in
+                                 zip(self._box.periodic, self._gravity))
+            if along_periodic:
+                if math.isfinite(t_end):
+                    v += g * (t_end - self._time)
+            else:
+                v = math.sqrt(v * v + 2.0 * g * math.hypot(*self._box.size))
         side = float(min(self._gf[2], self._gf[3]))
         if v > 0.0 and side / v <= 64.0 * np.spacing(horizon):
             raise ValueError(
@@ -642,7 +702,8 @@ class Simulation:
     def positions(self) -> np.ndarray:
         """Disk centres at :attr:`time`, shape (N, 2), a copy (wrapped into the box)."""
         out = np.empty((len(self._S), 2))
-        _flight.synchronized_positions(self._time, self._S, self._gi, self._gf, out)
+        _flight.synchronized_positions(self._time, self._S, self._gi, self._gf, out,
+                                       self._flight())
         return self._to_user(out)
 
     @positions.setter
@@ -656,13 +717,21 @@ class Simulation:
         Differences of these between two times are true displacements (for diffusion
         studies); on walled axes they equal :attr:`positions`.
         """
-        return self._to_user(_flight.positions_at(self._time, self._S)
-                             + self._image * self._box.size)
+        return self._to_user(self._unwrapped())
+
+    def _unwrapped(self) -> np.ndarray:
+        """Unwrapped centres at :attr:`time`, in internal row order."""
+        return (_flight.positions_at(self._time, self._S, self._gravity, self._invm)
+                + self._image * self._box.size)
+
+    def _velocities(self) -> np.ndarray:
+        """Velocities at :attr:`time`, in internal row order (a new array)."""
+        return _flight.velocities_at(self._time, self._S, self._gravity, self._invm)
 
     @property
     def velocities(self) -> np.ndarray:
-        """Disk velocities, shape (N, 2), a copy."""
-        return self._to_user(self._S[:, _layout.VX:_layout.VY + 1])
+        """Disk velocities at :attr:`time`, shape (N, 2), a copy."""
+        return self._to_user(self._velocities())
 
     @property
     def radii(self) -> np.ndarray:
@@ -726,7 +795,7 @@ class Simulation:
     def kinetic_energy(self) -> float:
         """Total kinetic energy of the movable disks, ``sum m v^2 / 2``."""
         movable = self._invm > 0
-        vel = self._S[movable, _layout.VX:_layout.VY + 1]
+        vel = self._velocities()[movable]
         return float(0.5 * np.dot(self._mass[movable], np.einsum("ij,ij->i", vel, vel)))
 
     def dissipated_energy(self) -> float:
@@ -738,7 +807,30 @@ class Simulation:
     def momentum(self) -> np.ndarray:
         """Total momentum of the movable disks, shape (2,)."""
         movable = self._invm > 0
-        return self._mass[movable] @ self._S[movable, _layout.VX:_layout.VY + 1]
+        return self._mass[movable] @ self._velocities()[movable]
+
+    @property
+    def gravity(self) -> np.ndarray:
+        """The uniform acceleration of the movable disks, shape (2,), a copy (zero
+        without gravity)."""
+        out = np.zeros(2) if self._gravity is None else self._gravity.copy()
+        out.flags.writeable = False
+        return out
+
+    def potential_energy(self) -> float:
+        """Potential energy of the movable disks in the gravity field,
+        ``-sum m g.r`` (zero at the origin), with :attr:`unwrapped_positions` so that
+        it stays continuous across periodic wraps; 0 without gravity."""
+        if self._gravity is None:
+            return 0.0
+        movable = self._invm > 0
+        return float(-self._mass[movable] @ (self._unwrapped()[movable] @ self._gravity))
+
+    def total_energy(self) -> float:
+        """``kinetic_energy() + potential_energy()``: constant to rounding for elastic
+        disks (while no immovable disk moves); with inelastic collisions it decreases
+        by :meth:`dissipated_energy`."""
+        return self.kinetic_energy() + self.potential_energy()
 
     def set_positions(self, positions) -> None:
         """Move every disk to new positions at the current time (``sim.positions = ...``
@@ -767,7 +859,8 @@ class Simulation:
         # refuses what the constructor refuses, and nothing of self changes until
         # they have passed.
         Simulation(pos, self.velocities, self.radii, self.masses, box=self._box,
-                   walls=self._walls, time=self._time, cell_size=self._cell_size)
+                   walls=self._walls, time=self._time, cell_size=self._cell_size,
+                   gravity=self._gravity)
         pos = self._check_in_box(pos, self.radii)  # (x = width becomes 0 if periodic)
         self._sync_all()
         self._S[:, _layout.X:_layout.Y + 1] = pos[self._order]
@@ -806,13 +899,14 @@ class Simulation:
         """
         vel = as_float_array("velocities", velocities, (len(self), 2))
         self._check_room(vel, self.radii)
+        self._check_resting(self.positions, vel, self.radii, self.masses)
         self._sync_all()
         self._S[:, _layout.VX:_layout.VY + 1] = vel[self._order]
         self._predict_all()  # every event and kept candidate is recomputed
 
     def _sync_all(self) -> None:
         """Move every stored position to the current time (local clocks all equal)."""
-        _flight.drift_all(self._time, self._S)
+        _flight.drift_all(self._time, self._S, self._gravity, self._invm)
 
     def measure(self, duration: float, **kwargs):
         """Run for ``duration`` and return the measurements over that window.
@@ -889,6 +983,17 @@ def _build_model(species, restitution, wall_restitution, tc, rad, vel, mass):
     if (table == 1.0).all() and wall == 1.0:
         return spec, None
     return spec, _models.Restitution(table, wall, tc, np.zeros_like(spec) if scalar else spec)
+
+
+def _as_gravity(gravity):
+    """Validate ``gravity``: ``None`` (or zero) for straight flights, else a finite
+    float64 2-vector."""
+    if gravity is None:
+        return None
+    g = np.array(as_float_array("gravity", gravity, (2,)))
+    if not (g != 0.0).any():
+        return None  # (the straight-line engine: the same flights, faster)
+    return g
 
 
 def _as_walls(walls) -> list[Wall]:

@@ -40,7 +40,12 @@ The state comes in bundles (tuples of arrays, unpacked at the top of :func:`run`
     the event log (capacity ``len(log_t)``);
 ``model``
     the physics of the contacts: ``None`` (elastic) or a model's tuple (see
-    :mod:`.response`).  Each model compiles its own ``run``, only when used.
+    :mod:`.response`);
+``flight``
+    the flight between events: ``None`` (straight lines) or gravity's tuple (see
+    :mod:`.flight`).
+
+Each combination of model and flight compiles its own ``run``, only when used.
 """
 
 from __future__ import annotations
@@ -100,7 +105,7 @@ def _step_cell(c, up, n):
 
 @kernel
 def run(t_end, max_collisions, max_events, mode, out, info,
-        particles, grid, walls, calendar, tallies, log, model):
+        particles, grid, walls, calendar, tallies, log, model, flight):
     """Process events in time order (``mode`` RUN_EVENTS), or (``mode`` PREDICT_ALL)
     predict every disk's next event from the time ``out[0]`` and rebuild the queue.
 
@@ -208,8 +213,8 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                     status = ERR_STALLED
                     break
                 else:
-                    drift(i, t, S)
-                    drift(j, t, S)
+                    drift(i, t, S, flight)
+                    drift(j, t, S, flight)
                     # A contact that rounding left not approaching exchanges nothing but is
                     # a processed contact event like any other (as for walls, and as in the
                     # reference): counted, logged, both disks re-predicted.
@@ -228,7 +233,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                     info[1] = partner if kind == SEGMENT else -1 - aux
                     status = ERR_IMMOVABLE_WALL if invm[i] == 0.0 else ERR_STALLED
                     break
-                drift(i, t, S)
+                drift(i, t, S, flight)
                 # (One call site: each inlined copy lengthens the first compilation.)
                 response.collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf,
                                       wa, wb, model)
@@ -236,7 +241,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                 redo0 = i
                 counts[C_WALL] += 1
             else:  # CROSS
-                drift(i, t, S)
+                drift(i, t, S, flight)
                 c = E[i, CELL]
                 cy = c // ncx
                 cx = c - cy * ncx
@@ -277,7 +282,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                 d = redo0 if k == 0 else redo1
                 dk = direction if k == 0 else -1
             t_new = predict(d, t, dk, S, E, tc, stamp, gi, gf, head, nxt,
-                            wa, wb, wstart, wwall, wsx, wsy)
+                            wa, wb, wstart, wwall, wsx, wsy, flight)
             E[d, STAGED] = 0  # (a new event: no stage of the lookahead yet)
             if mode == PREDICT_ALL:
                 qt[d] = t_new

@@ -112,3 +112,267 @@ def exit_time(x, vx, c, side, ncell, periodic):
         dt = (c * side - x) / vx
         return (dt if dt > 0.0 else 0.0), -1
     return INF, 0
+
+
+# ---------------------------------------------------------------- uniform acceleration
+# Under gravity a movable disk flies on a parabola.  The relative motion of two movable
+# disks stays linear (same acceleration), so :func:`pair_time` serves them; everything
+# else becomes a quadratic in time (a wall, a cell boundary, the line of a segment) or a
+# quartic (a fixed point: a segment's end, an immovable disk).
+
+
+@njit
+def descend_time(c, b, a):
+    """First ``t >= 0`` at which ``q(t) = c + b t + a t^2`` falls through zero
+    (``q' < 0`` there), for a gap ``c = q(0)`` that is ``>= 0`` up to rounding; ``inf``
+    if never.
+
+    ``q`` is a gap closing under a constant acceleration: the distance of a centre to a
+    cell boundary, of a disk's rim to a box wall or to the line of a segment (seen from
+    the disk's side).  Only a crossing *towards* the boundary counts: a disk that has
+    just touched a wall or crossed a boundary (``c`` 0 or a rounding below) and moves
+    away is not stopped there, but an acceleration that turns it back brings it to the
+    crossing again.  A gap ``c <= 0`` that is closing is crossed now (never in the
+    past); one that is opening comes back, if at all, at ``t = (b + sqrt(D)) / -2a``
+    with ``D = b^2 - 4 a c`` set to 0 where rounding left it negative (the turning
+    point: the gap closes again there).
+
+    Both roots are written without cancellation: for a closing gap ``b <= 0`` the root
+    ``(-b - sqrt(D)) / 2a`` equals ``2c / (sqrt(D) - b)``, a sum of two non-negative
+    numbers; for an opening gap ``b > 0`` the sum ``b + sqrt(D)`` is one already.
+    With ``a = 0`` this is ``c / -b``, the free-flight time, to the last bit.
+    """
+    if b < 0.0 or (b == 0.0 and a < 0.0):  # closing now
+        if c <= 0.0:
+            return 0.0
+        d = b * b - 4.0 * a * c
+        if d < 0.0:
+            return INF  # (a > 0: turns back before the boundary)
+        return 2.0 * c / (math.sqrt(d) - b)
+    if a >= 0.0:
+        return INF  # opening (or at rest), and never turning back
+    d = b * b - 4.0 * a * c
+    if d < 0.0:
+        d = 0.0
+    return (b + math.sqrt(d)) / (-2.0 * a)
+
+
+@njit
+def return_time(c, b, a):
+    """First ``t > 0`` at which ``q(t) = c + b t + a t^2`` falls through zero for a
+    ``q(0) = c < 0`` well below it (no rounding case): ``q`` must first rise above zero,
+    so it needs ``b > 0`` and ``a < 0`` and a real root, and the crossing down is the
+    later root ``(b + sqrt(D)) / -2a`` (no cancellation: ``b > 0``); ``inf`` otherwise."""
+    if b <= 0.0 or a >= 0.0:
+        return INF
+    d = b * b - 4.0 * a * c
+    if d < 0.0:
+        return INF
+    return (b + math.sqrt(d)) / (-2.0 * a)
+
+
+@njit
+def box_wall_time_accel(x, vx, ax, r, length):
+    """:func:`box_wall_time` for a centre with acceleration ``ax`` along the axis:
+    the earlier of reaching the lower wall moving down and the upper one moving up."""
+    t0 = descend_time(x - r, vx, 0.5 * ax)
+    t1 = descend_time(length - r - x, -vx, -0.5 * ax)
+    if t0 <= t1:
+        return (t0, 0) if t0 < INF else (INF, -1)
+    return t1, 1
+
+
+@njit
+def exit_time_accel(x, vx, ax, c, side, ncell, periodic):
+    """:func:`exit_time` for a centre with acceleration ``ax`` along the axis: a disk
+    moving up may turn back and leave through the lower boundary (an apex), so both
+    boundaries are solved and the earlier crossing taken."""
+    dn = INF
+    up = INF
+    if c > 0 or periodic:
+        dn = descend_time(x - c * side, vx, 0.5 * ax)
+    if c + 1 < ncell or periodic:
+        up = descend_time((c + 1) * side - x, -vx, -0.5 * ax)
+    if up < dn:
+        return up, 1
+    if dn < INF:
+        return dn, -1
+    return INF, 0
+
+
+@njit
+def _gap(t, px, py, vx, vy, ax, ay, d2):
+    """``f(t) = |p + v t + a t^2/2|^2 - d^2`` and ``s(t) = f'(t) / 2``."""
+    x = px + t * (vx + 0.5 * ax * t)
+    y = py + t * (vy + 0.5 * ay * t)
+    ux = vx + ax * t
+    uy = vy + ay * t
+    return x * x + y * y - d2, x * ux + y * uy
+
+
+@njit
+def _rate(t, px, py, vx, vy, ax, ay):
+    """``s(t) = f'(t) / 2``, the rate at which the squared distance changes (halved)."""
+    return _gap(t, px, py, vx, vy, ax, ay, 0.0)[1]
+
+
+@njit
+def _bisect_rate(lo, hi, px, py, vx, vy, ax, ay):
+    """The zero of ``s`` in ``[lo, hi]``, where ``s`` is monotone and changes sign,
+    bisected to the last bit (the turning point of the squared distance)."""
+    neg_lo = _rate(lo, px, py, vx, vy, ax, ay) < 0.0
+    for _ in range(2200):
+        mid = 0.5 * (lo + hi)
+        if mid <= lo or mid >= hi:
+            break
+        if (_rate(mid, px, py, vx, vy, ax, ay) < 0.0) == neg_lo:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit
+def point_time(px, py, vx, vy, ax, ay, d, horizon):
+    """First contact before ``horizon`` (a time, may be ``inf``) of a centre at relative
+    position ``p``, velocity ``v`` and constant acceleration ``a`` (not zero) with a
+    fixed point at distance ``d`` (a segment's end point, an immovable disk); ``inf``
+    if none.
+
+    ``f(t) = |p + v t + a t^2/2|^2 - d^2`` is a quartic: no closed form is stable, so
+    its roots are bracketed.  ``s = f'/2`` is a cubic whose derivative
+    ``s' = |v + a t|^2 + (p + v t + a t^2/2).a`` is the quadratic
+    ``(v.v + p.a) + 3 (v.a) t + 1.5 (a.a) t^2``: its roots (closed form, without
+    cancellation) split time into pieces on which ``s`` is monotone, each turning point
+    of ``f`` (a zero of ``s``) is bisected on its piece, and between turning points
+    ``f`` is monotone: the contact is the first turning-point interval on which ``f``
+    falls from above zero to zero or below, bisected to the last bit (the returned
+    time is the end at which ``f <= 0``: touching).  A contact the starting state
+    already makes (``f(0) <= 0`` and closing) is now; bodies that touch and separate
+    get their next contact, if gravity brings them back.  A dip of ``f`` that stays
+    above zero is a miss (a tangential touch exchanges no momentum).
+
+    Beyond ``T* = (|v| + sqrt(|v|^2 + 2 |a| (|p| + d))) / |a|`` the distance exceeds
+    ``d`` for ever (``|a| t^2/2 - |v| t - |p| > d``), which bounds the search.
+    """
+    d2 = d * d
+    f0, s0 = _gap(0.0, px, py, vx, vy, ax, ay, d2)
+    if f0 <= 0.0 and s0 < 0.0:
+        return 0.0
+    aa = ax * ax + ay * ay
+    amag = math.sqrt(aa)
+    vmag = math.sqrt(vx * vx + vy * vy)
+    pmag = math.sqrt(px * px + py * py)
+    h = (vmag + math.sqrt(vmag * vmag + 2.0 * amag * (pmag + d))) / amag
+    if horizon < h:
+        h = horizon
+        # Out of reach before the horizon: the distance shrinks by at most
+        # |v| t + |a| t^2 / 2.
+        if pmag - d > h * (vmag + 0.5 * amag * h):
+            return INF
+    # Pieces on which s is monotone: cut at the roots r1 <= r2 of s' in (0, h).
+    c2 = 1.5 * aa
+    c1 = 3.0 * (vx * ax + vy * ay)
+    c0 = vx * vx + vy * vy + px * ax + py * ay
+    disc = c1 * c1 - 4.0 * c2 * c0
+    r1 = h
+    r2 = h
+    if disc > 0.0:
+        q = -0.5 * (c1 + math.copysign(math.sqrt(disc), c1))
+        r1 = q / c2
+        r2 = c0 / q if q != 0.0 else r1
+        if r1 > r2:
+            r1, r2 = r2, r1
+        r1 = min(max(r1, 0.0), h)
+        r2 = min(max(r2, 0.0), h)
+    # Walk the pieces; each zero of s ends an interval on which f is monotone.
+    lo_f = 0.0
+    flo = f0
+    prev = 0.0
+    for k in range(3):
+        end = r1 if k == 0 else (r2 if k == 1 else h)
+        if end <= prev:
+            continue
+        if (_rate(prev, px, py, vx, vy, ax, ay) < 0.0) != (
+                _rate(end, px, py, vx, vy, ax, ay) < 0.0):
+            turn = _bisect_rate(prev, end, px, py, vx, vy, ax, ay)
+            t, flo_next = _fall(lo_f, turn, flo, px, py, vx, vy, ax, ay, d2)
+            if t < INF:
+                return t
+            lo_f = turn
+            flo = flo_next
+        prev = end
+    return _fall(lo_f, h, flo, px, py, vx, vy, ax, ay, d2)[0]
+
+
+@njit
+def _fall(lo, hi, flo, px, py, vx, vy, ax, ay, d2):
+    """On ``[lo, hi]``, where ``f`` is monotone and ``f(lo) = flo``: the time at which
+    ``f`` falls through zero, bisected to the last bit (its end with ``f <= 0``), or
+    ``inf``; and ``f(hi)``."""
+    fhi = _gap(hi, px, py, vx, vy, ax, ay, d2)[0]
+    if not (flo > 0.0 and fhi <= 0.0):
+        return INF, fhi
+    for _ in range(2200):
+        mid = 0.5 * (lo + hi)
+        if mid <= lo or mid >= hi:
+            break
+        if _gap(mid, px, py, vx, vy, ax, ay, d2)[0] > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return hi, fhi
+
+
+@njit
+def segment_time_accel(x, y, vx, vy, gx, gy, r, ax, ay, bx, by, horizon):
+    """:func:`segment_time` for a disk with acceleration ``g`` (a parabolic flight).
+
+    The signed distance of the centre from the segment's line, ``h(t)``, is a
+    parabola: the contact with the side is where ``|h|`` falls to ``r`` with the foot
+    point on the segment.  On the disk's own side that is :func:`descend_time` of the
+    gap ``|h| - r``; but a disk can also pass beside an end, reach the other side of
+    the line and come back onto the segment from there (thrown past the end of a
+    shelf, it falls onto its top): that later crossing is :func:`return_time`.  The end
+    points are fixed points (:func:`point_time`); the earliest valid candidate wins.
+    """
+    ux = bx - ax
+    uy = by - ay
+    ll = ux * ux + uy * uy
+    inv_len = 1.0 / math.sqrt(ll)
+    nx = -uy * inv_len
+    ny = ux * inv_len
+    h = (x - ax) * nx + (y - ay) * ny
+    w = vx * nx + vy * ny
+    an = 0.5 * (gx * nx + gy * ny)
+    if h < 0.0:  # (look at the line from the disk's side)
+        h = -h
+        w = -w
+        an = -an
+    best = INF
+    part = -1
+    for k in range(2):
+        if k == 0:
+            dt = descend_time(h - r, w, an)
+        else:
+            dt = return_time(-h - r, -w, -an)
+        if dt < best:
+            px = x + dt * (vx + 0.5 * gx * dt)
+            py = y + dt * (vy + 0.5 * gy * dt)
+            s = ((px - ax) * ux + (py - ay) * uy) / ll
+            if 0.0 <= s <= 1.0:
+                best = dt
+                part = 0
+    lim = min(best, horizon)
+    ta = point_time(x - ax, y - ay, vx, vy, gx, gy, r, lim)
+    if ta < best:
+        best = ta
+        part = 1
+        lim = min(best, horizon)
+    tb = point_time(x - bx, y - by, vx, vy, gx, gy, r, lim)
+    if tb < best:
+        best = tb
+        part = 2
+    if best < INF:
+        return best, part
+    return INF, -1

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from .._jit import njit
 from . import prefetch
-from .flight import position_at
+from .flight import acceleration, position_at, velocity_at
 from .grid import neighbour
 from .layout import (
     AUX,
@@ -39,15 +39,31 @@ from .layout import (
     pack_segment,
     pack_shift,
 )
-from .predict import INF, box_wall_time, exit_time, pair_time, segment_time
+from .predict import (
+    INF,
+    box_wall_time,
+    box_wall_time_accel,
+    exit_time,
+    exit_time_accel,
+    pair_time,
+    point_time,
+    segment_time,
+    segment_time_accel,
+)
 
 
 @njit(inline="always")
 def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
-                S, stamp, gi, gf, head, nxt, best, partner, aux, pst):
-    """Earliest contact of disk ``i`` (at ``x, y`` at time ``t``) with the disks in the
-    cells at offsets ``[ox0, ox1] x [oy0, oy1]`` from ``(cx, cy)``, if before ``best``
-    (a time interval from ``t``)."""
+                S, stamp, gi, gf, head, nxt, best, partner, aux, pst, flight):
+    """Earliest contact of disk ``i`` (at ``x, y`` with velocity ``vx, vy`` at time
+    ``t``) with the disks in the cells at offsets ``[ox0, ox1] x [oy0, oy1]`` from
+    ``(cx, cy)``, if before ``best`` (a time interval from ``t``).
+
+    Under gravity two movable disks (or two immovable ones) share their acceleration:
+    their relative motion is a straight line and :func:`pair_time` holds; a movable
+    disk against an immovable one is a parabola against a fixed point
+    (:func:`point_time`)."""
+    gxi, gyi = acceleration(i, flight)
     ncx = gi[0]
     for ox in range(ox0, ox1 + 1):
         nxc, sx = neighbour(cx, ox, ncx, gi[2] != 0)
@@ -60,10 +76,19 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
             j = head[nxc + ncx * nyc]
             while j >= 0:
                 if j != i:
-                    xj, yj = position_at(j, t, S)
+                    xj, yj = position_at(j, t, S, flight)
                     dx = x - (xj + sx * gf[0])
                     dy = y - (yj + sy * gf[1])
-                    dtc = pair_time(dx, dy, vx - S[j, VX], vy - S[j, VY], r + S[j, R])
+                    if flight is None:
+                        dtc = pair_time(dx, dy, vx - S[j, VX], vy - S[j, VY], r + S[j, R])
+                    else:
+                        vxj, vyj = velocity_at(j, t, S, flight)
+                        gxj, gyj = acceleration(j, flight)
+                        if gxi == gxj and gyi == gyj:
+                            dtc = pair_time(dx, dy, vx - vxj, vy - vyj, r + S[j, R])
+                        else:
+                            dtc = point_time(dx, dy, vx - vxj, vy - vyj, gxi - gxj,
+                                             gyi - gyj, r + S[j, R], best)
                     if dtc < best:
                         best = dtc
                         partner = j
@@ -74,17 +99,24 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
 
 
 @njit(inline="always")
-def _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy, best, partner, aux):
-    """Earliest contact with the wall segments listed for cell ``c``, if before ``best``."""
+def _scan_walls(x, y, vx, vy, gx, gy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy,
+                best, partner, aux, flight):
+    """Earliest contact with the wall segments listed for cell ``c``, if before ``best``
+    (``gx, gy``: the disk's acceleration under gravity)."""
     if wa.shape[0] == 0:  # no segments: spare the bucket lookup (a cache miss at large N)
         return best, partner, aux
     for k in range(wstart[c], wstart[c + 1]):
         w = wwall[k]
         shx = wsx[k] * gf[0]
         shy = wsy[k] * gf[1]
-        dtw, part = segment_time(x, y, vx, vy, r,
-                                 wa[w, 0] + shx, wa[w, 1] + shy,
-                                 wb[w, 0] + shx, wb[w, 1] + shy)
+        if flight is None or (gx == 0.0 and gy == 0.0):
+            dtw, part = segment_time(x, y, vx, vy, r,
+                                     wa[w, 0] + shx, wa[w, 1] + shy,
+                                     wb[w, 0] + shx, wb[w, 1] + shy)
+        else:
+            dtw, part = segment_time_accel(x, y, vx, vy, gx, gy, r,
+                                           wa[w, 0] + shx, wa[w, 1] + shy,
+                                           wb[w, 0] + shx, wb[w, 1] + shy, best)
         if dtw < best:
             best = dtw
             partner = w
@@ -93,11 +125,15 @@ def _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy, best, p
 
 
 @njit(inline="always")
-def _schedule(i, t, x, y, vx, vy, cx, cy, tc, E, gi, gf):
+def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tc, E, gi, gf, flight):
     """The time of disk ``i``'s next event: the earlier of its kept candidate and
     leaving its cell (whose direction is recorded in ``E[i, KIND]``)."""
-    dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
-    dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
+    if flight is None:
+        dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
+        dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
+    else:
+        dtx, dirx = exit_time_accel(x, vx, gx, cx, gf[2], gi[0], gi[2] != 0)
+        dty, diry = exit_time_accel(y, vy, gy, cy, gf[3], gi[1], gi[3] != 0)
     if dty < dtx:
         dtx = dty
         aux = 2 if diry > 0 else 3
@@ -109,7 +145,7 @@ def _schedule(i, t, x, y, vx, vy, cx, cy, tc, E, gi, gf):
 
 @njit(inline="always")
 def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
-            wa, wb, wstart, wwall, wsx, wsy):
+            wa, wb, wstart, wwall, wsx, wsy, flight):
     """Predict disk ``i``'s next event from time ``t``, keep its best non-crossing
     candidate, and return the time of the scheduled event.
 
@@ -123,9 +159,9 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
     """
     partial = direction >= 0 and not (
         kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
-    vx = S[i, VX]
-    vy = S[i, VY]
-    x, y = position_at(i, t, S)
+    vx, vy = velocity_at(i, t, S, flight)
+    gx, gy = acceleration(i, flight)
+    x, y = position_at(i, t, S, flight)
     r = S[i, R]
     c = E[i, CELL]
     cy = c // gi[0]
@@ -155,13 +191,19 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
         kind = NONE
         aux = 0
         if gi[2] == 0:
-            dtw, side = box_wall_time(x, vx, r, gf[0])
+            if flight is None:
+                dtw, side = box_wall_time(x, vx, r, gf[0])
+            else:
+                dtw, side = box_wall_time_accel(x, vx, gx, r, gf[0])
             if dtw < best:
                 best = dtw
                 kind = BOX
                 aux = side
         if gi[3] == 0:
-            dtw, side = box_wall_time(y, vy, r, gf[1])
+            if flight is None:
+                dtw, side = box_wall_time(y, vy, r, gf[1])
+            else:
+                dtw, side = box_wall_time_accel(y, vy, gy, r, gf[1])
             if dtw < best:
                 best = dtw
                 kind = BOX
@@ -169,15 +211,15 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
     partner = -1
     pst = 0
     bd, pd, ad, ps = _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
-                                 S, stamp, gi, gf, head, nxt, best, -1, 0, 0)
+                                 S, stamp, gi, gf, head, nxt, best, -1, 0, 0, flight)
     if bd < best:
         best = bd
         kind = DISK
         partner = pd
         aux = ad
         pst = ps
-    bw, pw, aw = _scan_walls(x, y, vx, vy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy,
-                             best, -1, 0)
+    bw, pw, aw = _scan_walls(x, y, vx, vy, gx, gy, r, c, gf, wa, wb, wstart, wwall, wsx,
+                             wsy, best, -1, 0, flight)
     if bw < best:
         best = bw
         kind = SEGMENT
@@ -190,5 +232,5 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
         E[i, PARTNER] = partner
         E[i, AUX] = aux
         E[i, PSTAMP] = pst
-    return _schedule(i, t, x, y, vx, vy, cx, cy, tc, E, gi, gf)
+    return _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tc, E, gi, gf, flight)
 

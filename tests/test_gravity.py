@@ -127,6 +127,62 @@ def test_fast_disk_never_tunnels_through_a_thin_segment():
             assert sim.positions[0, 0] < 5.0 - 0.25 * (1.0 - 1e-9)
 
 
+# ------------------------------------------------------------------ coming to rest
+def test_inelastic_bounces_end_at_rest_on_the_floor_after_finitely_many_events():
+    """With wall restitution e the rebound speeds are e^k v0; once a rebound would
+    bring the disk back within the TC model's tc (2 v / g < tc) the floor holds it.
+    The count of bounces follows in closed form, and no event comes after."""
+    g, h0, e, tc = 1.0, 4.5, 0.5, 1e-3
+    sim = ed.Simulation([[5.0, 0.5 + h0]], [[0.0, 0.0]], radii=0.5, box=WALLED,
+                        gravity=(0.0, -g), wall_restitution=e, tc=tc)
+    e0 = sim.total_energy()
+    sim.advance(until=100.0)
+    v0 = math.sqrt(2.0 * g * h0)
+    bounces = next(m for m in range(1, 100) if 2.0 * e**m * v0 / g < tc)
+    assert sim.counts.wall_collisions == bounces
+    sim.advance(until=1e6)
+    assert sim.counts.events == bounces
+    assert sim.positions[0, 1] == pytest.approx(0.5, abs=1e-12)
+    assert sim.velocities.tolist() == [[0.0, 0.0]]
+    assert sim.total_energy() + sim.dissipated_energy() == pytest.approx(e0, rel=1e-12)
+
+
+def test_tilted_gravity_brings_the_disk_to_rest_in_the_corner():
+    sim = ed.Simulation([[5.0, 5.0]], [[0.2, 0.0]], radii=0.5, box=WALLED,
+                        gravity=(0.3, -1.0), wall_restitution=0.5, tc=1e-3)
+    sim.advance(until=1e3)
+    events = sim.counts.events
+    sim.advance(until=1e6)
+    assert sim.counts.events == events < 100
+    assert sim.positions.tolist() == [[9.5, 0.5]]
+
+
+def test_a_resting_disk_is_woken_by_a_collision():
+    """A disk falls onto one resting on the floor: the collision sets the lower disk
+    free (it is pushed into the floor, bounces, and rests again); energy is accounted
+    for and nothing overlaps."""
+    sim = ed.Simulation([[5.0, 0.5], [5.2, 4.0]], [[0.0, 0.0], [0.0, 0.0]], radii=0.5,
+                        box=WALLED, gravity=(0.0, -1.0), restitution=0.7,
+                        wall_restitution=0.7, tc=1e-4)
+    e0 = sim.total_energy()
+    sim.advance(until=2.0)
+    assert sim.counts.collisions == 0  # (the first contact comes at t ~ 2.35)
+    sim.advance(until=200.0)
+    assert sim.counts.collisions >= 1
+    pos = sim.positions
+    assert np.hypot(*(pos[0] - pos[1])) >= 1.0 - 1e-9
+    assert (pos[:, 1] >= 0.5 - 1e-12).all()
+    assert sim.total_energy() + sim.dissipated_energy() == pytest.approx(e0, rel=1e-12)
+
+
+def test_a_disk_at_rest_on_the_floor_starts_held_by_an_inelastic_wall():
+    sim = ed.Simulation([[5.0, 0.5]], [[1.0, 0.0]], radii=0.5, box=WALLED,
+                        gravity=(0.0, -1.0), wall_restitution=0.9, tc=1e-4)
+    sim.advance(until=3.0)
+    assert sim.positions.tolist() == [[8.0, 0.5]]
+    assert sim.counts.events == 0
+
+
 # ------------------------------------------------------------------ a gas
 def test_elastic_gas_under_gravity_conserves_total_energy():
     sim = ed.make_gas(400, 0.3, periodic=(True, False), seed=3, gravity=(0.0, -0.5))
@@ -307,6 +363,9 @@ def test_a_disk_at_rest_on_the_floor_is_refused():
     before = sim.velocities
     with pytest.raises(ValueError, match="rest on the box wall"):
         sim.set_velocities([[0.0, 0.0]])
+    with pytest.raises(ValueError, match="rest on the box wall"):
+        ed.Simulation([[5.0, 0.5]], [[1.0, 0.0]], radii=0.5, box=WALLED,
+                      gravity=(0.0, -1.0), wall_restitution=0.9, tc=0.0)
     assert np.array_equal(sim.velocities, before)
 
 

@@ -240,7 +240,7 @@ class Simulation:
         self._cell_size = cell_size
         self._build_grid(pos, dmax, cell_size)
         self._check_overlaps(pos, rad)
-        self._check_resting(pos, vel, rad, mass)
+        _layout.support_view(state)[:] = self._resting(pos, vel, rad, mass, model[1])
 
         self._species = None if species is None else model[0]
         self._model = model[1]
@@ -326,14 +326,18 @@ class Simulation:
                     f"along {name}; their {name}-velocity must be 0"
                 )
 
-    def _check_resting(self, pos: np.ndarray, vel: np.ndarray, rad: np.ndarray,
-                       mass: np.ndarray) -> None:
-        """Under gravity, a movable disk at rest against a box wall that gravity presses
-        it into would bounce without end at one instant (a resting contact is not a
-        motion of free flights and impulses): refuse it."""
+    def _resting(self, pos: np.ndarray, vel: np.ndarray, rad: np.ndarray,
+                 mass: np.ndarray, model) -> np.ndarray:
+        """Under gravity, the box walls each movable disk rests on (bits ``1 << side``,
+        see ``layout.S_SUPPORT``): it touches the wall, with zero normal velocity, and
+        gravity presses it into the wall.  An inelastic model with ``tc > 0`` holds such
+        a disk on the wall (as it would put a disk to rest whose bounces shrink); any
+        other model would make it bounce without end at one instant (a resting contact
+        is not a motion of free flights and impulses): refused."""
+        bits = np.zeros(len(pos), np.int32)
         g = self._gravity
         if g is None:
-            return
+            return bits
         box = self._box
         movable = np.isfinite(mass)
         for axis, length in enumerate((box.width, box.height)):
@@ -344,15 +348,19 @@ class Simulation:
             else:
                 touching = length - rad - pos[:, axis] <= _OVERLAP_TOL * rad
             resting = movable & touching & (vel[:, axis] == 0.0)
-            if resting.any():
+            if resting.any() and (model is None or model.tc == 0.0):
                 name = "xy"[axis]
                 wall = f"{name}=0" if g[axis] < 0.0 else f"{name}={length}"
                 raise ValueError(
                     f"positions: disks {indices_where(resting)} rest on the box wall at "
                     f"{wall} with zero {name}-velocity while gravity presses them into "
-                    f"it, which would take unboundedly many bounces at one instant; "
-                    "lift them by a small gap (or give them a velocity)"
+                    "it, which would take unboundedly many bounces at one instant: "
+                    "lift them by a small gap, give them a velocity, or make them "
+                    "inelastic (restitution < 1 with tc > 0 lets walls hold them)"
                 )
+            side = 2 * axis + (0 if g[axis] < 0.0 else 1)
+            bits[resting] |= 1 << side
+        return bits
 
     def _check_walls_in_box(self) -> None:
         w, h = self._box.width, self._box.height
@@ -468,7 +476,8 @@ class Simulation:
     def _flight(self):
         """The engine's flight argument: ``None`` (straight lines) or gravity's."""
         g = self._gravity
-        return None if g is None else (float(g[0]), float(g[1]), self._invm)
+        return (None if g is None else
+                (float(g[0]), float(g[1]), self._invm, _layout.support_view(self._S)))
 
     def _queue_args(self):
         return (self._qt, self._E, self._hv, self._qhead, self._qs, self._qf)
@@ -721,12 +730,12 @@ class Simulation:
 
     def _unwrapped(self) -> np.ndarray:
         """Unwrapped centres at :attr:`time`, in internal row order."""
-        return (_flight.positions_at(self._time, self._S, self._gravity, self._invm)
+        return (_flight.positions_at(self._time, self._S, self._flight())
                 + self._image * self._box.size)
 
     def _velocities(self) -> np.ndarray:
         """Velocities at :attr:`time`, in internal row order (a new array)."""
-        return _flight.velocities_at(self._time, self._S, self._gravity, self._invm)
+        return _flight.velocities_at(self._time, self._S, self._flight())
 
     @property
     def velocities(self) -> np.ndarray:
@@ -859,11 +868,12 @@ class Simulation:
         # refuses what the constructor refuses, and nothing of self changes until
         # they have passed.
         Simulation(pos, self.velocities, self.radii, self.masses, box=self._box,
-                   walls=self._walls, time=self._time, cell_size=self._cell_size,
-                   gravity=self._gravity)
+                   walls=self._walls, time=self._time, cell_size=self._cell_size)
         pos = self._check_in_box(pos, self.radii)  # (x = width becomes 0 if periodic)
+        rest = self._resting(pos, self.velocities, self.radii, self.masses, self._model)
         self._sync_all()
         self._S[:, _layout.X:_layout.Y + 1] = pos[self._order]
+        _layout.support_view(self._S)[:] = rest[self._order]
         self._image[:] = 0
         dmax = 2.0 * float(self._S[:, _layout.R].max())
         self._build_grid(self._S[:, _layout.X:_layout.Y + 1], dmax, self._cell_size)
@@ -899,14 +909,15 @@ class Simulation:
         """
         vel = as_float_array("velocities", velocities, (len(self), 2))
         self._check_room(vel, self.radii)
-        self._check_resting(self.positions, vel, self.radii, self.masses)
+        rest = self._resting(self.positions, vel, self.radii, self.masses, self._model)
         self._sync_all()
         self._S[:, _layout.VX:_layout.VY + 1] = vel[self._order]
+        _layout.support_view(self._S)[:] = rest[self._order]
         self._predict_all()  # every event and kept candidate is recomputed
 
     def _sync_all(self) -> None:
         """Move every stored position to the current time (local clocks all equal)."""
-        _flight.drift_all(self._time, self._S, self._gravity, self._invm)
+        _flight.drift_all(self._time, self._S, self._flight())
 
     def measure(self, duration: float, **kwargs):
         """Run for ``duration`` and return the measurements over that window.

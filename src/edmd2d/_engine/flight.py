@@ -10,8 +10,11 @@ are moved to its time (:func:`drift`).  Every place of the engine and of the Pyt
 layer that moves a disk along its flight goes through this module.
 
 The ``flight`` argument chooses the flight: ``None`` for straight lines (the default,
-which compiles to the plain formulas), or ``(gx, gy, invm)``: the acceleration and the
-inverse masses (0 for an immovable disk).
+which compiles to the plain formulas), or ``(gx, gy, invm, support)``: the
+acceleration, the inverse masses (0 for an immovable disk) and each disk's supports
+(``layout.S_SUPPORT``): the box walls it rests on, one bit per side.  A disk resting
+on a wall (put to rest by an inelastic model, :mod:`.response`) slides along it: the
+component of ``g`` normal to that wall is held by the wall.
 """
 
 from __future__ import annotations
@@ -26,13 +29,17 @@ from .layout import VX, VY, T, X, Y
 
 @njit(inline="always")
 def acceleration(i, flight):
-    """The acceleration of disk ``i``: ``g`` if it is movable, else 0."""
+    """The acceleration of disk ``i``: ``g`` if it is movable, less the components
+    that the walls it rests on hold; 0 for an immovable disk."""
     if flight is None:
         return 0.0, 0.0
-    gx, gy, invm = flight
-    if invm[i] > 0.0:
+    gx, gy, invm, support = flight
+    if invm[i] == 0.0:
+        return 0.0, 0.0
+    rest = support[i]
+    if rest == 0:
         return gx, gy
-    return 0.0, 0.0
+    return (0.0 if rest & 3 else gx), (0.0 if rest & 12 else gy)
 
 
 @njit
@@ -86,34 +93,38 @@ def synchronized_positions(t, S, gi, gf, out, flight):
         out[i, 1] = y
 
 
-def _accelerations(S, gravity, invm):
-    """Per-disk accelerations, shape (N, 2) (numpy): ``gravity`` for movable disks."""
-    return np.where((invm > 0.0)[:, None], np.asarray(gravity, np.float64), 0.0)
+def accelerations(flight):
+    """Per-disk accelerations, shape (N, 2) (numpy; see :func:`acceleration`)."""
+    gx, gy, invm, support = flight
+    acc = np.zeros((len(invm), 2))
+    movable = invm > 0.0
+    acc[movable & (support & 3 == 0), 0] = gx
+    acc[movable & (support & 12 == 0), 1] = gy
+    return acc
 
 
-def positions_at(t, S, gravity=None, invm=None):
+def positions_at(t, S, flight=None):
     """Unwrapped centres of all disks at time ``t``, shape (N, 2) (numpy, a new array);
-    under ``gravity`` (a 2-vector; ``invm`` the inverse masses) on their parabolas."""
+    under gravity on their parabolas."""
     dt = (t - S[:, T])[:, None]
-    if gravity is None:
+    if flight is None:
         return S[:, X:Y + 1] + dt * S[:, VX:VY + 1]
-    return S[:, X:Y + 1] + dt * (S[:, VX:VY + 1] + 0.5 * _accelerations(S, gravity, invm) * dt)
+    return S[:, X:Y + 1] + dt * (S[:, VX:VY + 1] + 0.5 * accelerations(flight) * dt)
 
 
-def velocities_at(t, S, gravity=None, invm=None):
+def velocities_at(t, S, flight=None):
     """Velocities of all disks at time ``t``, shape (N, 2) (numpy, a new array)."""
-    if gravity is None:
+    if flight is None:
         return S[:, VX:VY + 1].copy()
-    dt = (t - S[:, T])[:, None]
-    return S[:, VX:VY + 1] + _accelerations(S, gravity, invm) * dt
+    return S[:, VX:VY + 1] + accelerations(flight) * (t - S[:, T])[:, None]
 
 
-def drift_all(t, S, gravity=None, invm=None):
+def drift_all(t, S, flight=None):
     """Move every stored state to time ``t`` (all local clocks then equal ``t``)."""
-    if gravity is None:
+    if flight is None:
         S[:, X:Y + 1] += (t - S[:, T])[:, None] * S[:, VX:VY + 1]
     else:
-        pos = positions_at(t, S, gravity, invm)
-        S[:, VX:VY + 1] = velocities_at(t, S, gravity, invm)
+        pos = positions_at(t, S, flight)
+        S[:, VX:VY + 1] = velocities_at(t, S, flight)
         S[:, X:Y + 1] = pos
     S[:, T] = t

@@ -52,6 +52,8 @@ R = _col("R", "S", np.float64, 5)
 S_STAMP = _col("S_STAMP", "S", np.int32, 12)  # invalidation counter
 S_NEXT = _col("S_NEXT", "S", np.int32, 13)  # next disk in the cell's list (-1: none)
 S_PREV = _col("S_PREV", "S", np.int32, 14)  # previous disk in the cell's list
+# Under gravity: the box walls a disk rests on, one bit per side (1 << side; 0: none).
+S_SUPPORT = _col("S_SUPPORT", "S", np.int32, 15)
 N_STATE = ROW_BYTES // 8  # float64 columns per S row
 
 # --- E: the bookkeeping row (E is int32; its float64 columns are those of
@@ -97,6 +99,11 @@ def row_views(S, E):
     ef = E.view(np.float64)
     return (si[:, S_STAMP], si[:, S_NEXT], si[:, S_PREV], ef[:, QT], ef[:, E_TC],
             ef[:, E_INVM])
+
+
+def support_view(S):
+    """The column of the box walls each disk rests on (``S_SUPPORT``), a 1-D view."""
+    return S.view(np.int32)[:, S_SUPPORT]
 
 
 class Kind(IntEnum):

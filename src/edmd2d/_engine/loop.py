@@ -218,7 +218,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                     # A contact that rounding left not approaching exchanges nothing but is
                     # a processed contact event like any other (as for walls, and as in the
                     # reference): counted, logged, both disks re-predicted.
-                    response.collide_pair(i, j, t, aux, S, invm, acc, gf, model)
+                    response.collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight)
                     counts[C_COLLISIONS] += 1
                     n_coll += 1
                     stamp[i] += 1
@@ -236,7 +236,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                 drift(i, t, S, flight)
                 # (One call site: each inlined copy lengthens the first compilation.)
                 response.collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf,
-                                      wa, wb, model)
+                                      wa, wb, model, flight)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1

@@ -119,10 +119,12 @@ def _note_collision(i, t, invm, model):
 
 
 @njit(inline="always")
-def collide_pair(i, j, t, aux, S, invm, acc, gf, model):
+def collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight):
     """Resolve the contact of disks ``i`` and ``j`` (both at time ``t``; ``j`` seen
     through the periodic image shift ``aux``), and add its impulse to the collision
-    virial.  A contact that rounding left not approaching exchanges nothing."""
+    virial.  A contact that rounding left not approaching exchanges nothing.  Under
+    gravity a disk leaves a wall it rested on (:func:`_rest`) if the collision gives
+    it a velocity along the wall's normal."""
     sx, sy = unpack_shift(aux)
     dx = S[i, X] - (S[j, X] + sx * gf[0])
     dy = S[i, Y] - (S[j, Y] + sy * gf[1])
@@ -144,16 +146,56 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, model):
         acc[A_VIRIAL_YY] += jr * ny * ny
     _note_collision(i, t, invm, model)
     _note_collision(j, t, invm, model)
+    if flight is not None:
+        _release(i, S, flight[3])
+        _release(j, S, flight[3])
 
 
 @njit(inline="always")
-def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model):
+def _release(i, S, support):
+    """After a collision, disk ``i`` stays held only by the walls along whose normal it
+    still does not move (see :func:`_rest`)."""
+    rest = support[i]
+    if rest != 0:
+        if S[i, VX] != 0.0:
+            rest &= ~3
+        if S[i, VY] != 0.0:
+            rest &= ~12
+        support[i] = rest
+
+
+@njit(inline="always")
+def _rest(i, side, S, invm, acc, model, flight):
+    """Put disk ``i``, just reflected by box wall ``side``, to rest on it if gravity
+    presses it into that wall and it would be back within the TC model's ``tc``: its
+    bounces would go on shrinking (or, elastic under the TC rule, never end), so the
+    wall holds it instead.  The normal velocity left (its kinetic energy counted as
+    dissipated) is removed, and the disk slides along the wall from now on (see
+    :mod:`.flight`).  Only for an inelastic model with ``tc > 0``."""
+    if model is None or flight is None:
+        return
+    axis = side >> 1
+    inward = 1.0 if side % 2 == 0 else -1.0  # the wall's normal, into the box
+    g_n = (flight[0] if axis == 0 else flight[1]) * inward
+    if g_n >= 0.0:
+        return
+    vn = S[i, VX + axis] * inward
+    if 2.0 * vn < -g_n * model[3]:
+        acc[A_DISSIPATED] += 0.5 * vn * vn / invm[i]
+        S[i, VX + axis] = 0.0
+        flight[3][i] |= 1 << side
+
+
+@njit(inline="always")
+def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model, flight):
     """Resolve the contact of disk ``i`` (at time ``t``) with box wall ``aux`` (``kind``
     BOX: x=0, x=width, y=0, y=height) or with the wall segment ``partner`` (its side or
     an end point, and its image shift, packed in ``aux``), and add the impulse to that
     wall's tally: ``acc[A_BOX + aux]`` for a box wall; ``acc[A_SEGMENTS]`` (all segments)
     and row ``partner`` of ``wacc`` (the segment's vector, side or end-point and contact
-    tallies, ``layout.W_*``) for a segment."""
+    tallies, ``layout.W_*``) for a segment.  Under gravity a disk may come to rest on
+    a box wall (:func:`_rest`), and leaves a wall it rested on when a segment gives it
+    a velocity along that wall's normal."""
     if kind == BOX:
         # Lower wall: normal +e; upper wall: normal -e.
         sign = 1.0 if aux % 2 == 0 else -1.0
@@ -206,3 +248,8 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model
             wacc[partner, W_FY] -= impulse * ny
             wacc[partner, col] += impulse
     _note_collision(i, t, invm, model)
+    if flight is not None:
+        if kind == BOX:
+            _rest(i, aux, S, invm, acc, model, flight)
+        else:
+            _release(i, S, flight[3])

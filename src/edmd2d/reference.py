@@ -17,6 +17,13 @@ Luding and McNamara (1998) keeps inelastic collapse away: a collision is elastic
 of its movable disks has collided less than a time ``tc`` before.  With the defaults
 (``e = e_w = 1``) every collision is elastic.
 
+Under uniform gravity ``g`` every movable disk flies on a parabola,
+``x(t) = x0 + v0 t + g t^2 / 2``, while immovable disks and walls feel nothing.  Contact
+times are then roots of polynomials of degree up to four, found here by a method of
+their own: :func:`numpy.roots` on the derivative cuts time into pieces on which the
+contact function is monotonic, and its sign, followed by Newton's method and bisection,
+locates the crossing.
+
 Examples
 --------
 >>> import edmd2d as ed
@@ -40,6 +47,7 @@ from .geometry import Box, Wall
 __all__ = ["ReferenceSimulation"]
 
 INF = math.inf
+EPS = np.finfo(float).eps  # the unit roundoff times 2
 
 
 def _dot(a, b):
@@ -89,12 +97,312 @@ def segment_contact_time(p, v, r, a, b):
     return best, part
 
 
+def _at(p, v, a, t):
+    """Position at time ``t`` of a body at ``p`` with velocity ``v`` and acceleration ``a``.
+
+    The drift and the wall contact functions compute ``p + v t + a t^2 / 2`` with the
+    same arithmetic, so that a disk moved to the time of a wall contact is where the
+    search saw it (touching or overlapping by rounding, not short of the wall).
+    """
+    h = 0.5 * t * t
+    return (p[0] + t * v[0] + h * a[0], p[1] + t * v[1] + h * a[1])
+
+
+def _trim(c):
+    """The coefficients without leading (highest-power) zeros."""
+    k = 0
+    while k < len(c) and c[k] == 0.0:
+        k += 1
+    return list(c[k:])
+
+
+def _root_real_parts(c):
+    """Real parts of all complex roots of the polynomial ``c`` (highest power first).
+
+    Found with :func:`numpy.roots` (the eigenvalues of the companion matrix).  Roots
+    with an imaginary part are kept too: a near-double root comes out as a complex pair
+    whose real part is the place where the two real roots (or their near miss) are.
+    """
+    c = _trim(c)
+    if len(c) <= 1:
+        return []
+    if len(c) == 2:
+        return [-c[1] / c[0]]
+    return [float(z.real) for z in np.roots(c)]
+
+
+def _root_bound(c):
+    """A bound above the modulus of every root of ``c`` (trimmed, degree >= 1).
+
+    Fujiwara's bound ``2 max_k |c_k / c_0|^(1/k)``, itself doubled so that the
+    polynomial's sign there is the sign of its leading coefficient beyond rounding.
+    """
+    return 4.0 * max(abs(c[k] / c[0]) ** (1.0 / k) for k in range(1, len(c)))
+
+
+def _first_nonpositive(f, df, lo, hi, flo, fhi):
+    """The float ``t`` in ``(lo, hi]`` where ``f`` turns from > 0 to <= 0.
+
+    ``f`` decreases on ``[lo, hi]`` with ``flo = f(lo) > 0 >= f(hi) = fhi``.  Three
+    stages, each evaluation narrowing the bracket ``lo < t <= hi`` by the sign of ``f``:
+
+    1. Newton's method from the secant point, a step that leaves the bracket replaced by
+       a bisection, until the step is a few units in the last place;
+    2. steps of 1, 4, 16, ... units in the last place from there across the crossing,
+       until the sign flips: a bracket a few floats wide;
+    3. bisection until ``lo`` and ``hi`` are adjacent floats.
+
+    Returns ``hi``, the first float at which ``f <= 0``.
+    """
+    t = lo + flo * ((hi - lo) / (flo - fhi))
+    if not lo < t < hi:
+        t = lo + 0.5 * (hi - lo)
+    for _ in range(100):
+        ft = f(t)
+        if ft > 0.0:
+            lo = t
+        else:
+            hi = t
+        slope = df(t)
+        nxt = t - ft / slope if slope < 0.0 else -INF
+        if abs(nxt - t) <= 4.0 * math.ulp(t):
+            break
+        t = nxt if lo < nxt < hi else lo + 0.5 * (hi - lo)
+        if not lo < t < hi:
+            return hi
+    step, up = math.ulp(t), t == lo
+    while True:
+        probe = t + step if up else t - step
+        if not lo < probe < hi:
+            break
+        if f(probe) > 0.0:
+            lo = probe
+            if not up:
+                break
+        else:
+            hi = probe
+            if up:
+                break
+        step *= 4.0
+    while True:
+        mid = lo + 0.5 * (hi - lo)
+        if not lo < mid < hi:
+            return hi
+        if f(mid) > 0.0:
+            lo = mid
+        else:
+            hi = mid
+
+
+def _crossings(coeffs, f, df, noise):
+    """Every time ``t >= 0``, in order, at which ``f`` turns from > 0 to <= 0.
+
+    ``coeffs`` are the coefficients of the polynomial ``f`` (highest power first); ``f``
+    and ``df`` evaluate it and its derivative accurately (from the geometry rather than
+    from the coefficients), and ``noise(t)`` bounds the rounding error of ``f(t)``.  A
+    contact function ``f`` (a squared distance minus its square at contact, or a gap) is
+    positive while the bodies are apart, so these are the moments they come into
+    contact.
+
+    * The real parts of all roots of the derivative (:func:`numpy.roots`), between 0 and
+      a bound beyond every root of ``f``, cut ``[0, bound]`` into pieces on each of
+      which ``f`` is monotonic.  Extra cuts (real parts of complex roots) do no harm,
+      and no real root of the derivative is lost to a small imaginary part.
+    * ``t = 0`` counts if ``f(0) <= 0`` and ``df(0) < 0``: the bodies touch or overlap
+      by rounding and approach.
+    * A piece with ``f > 0`` at its left end and ``f <= 0`` at its right end holds one
+      crossing, located by :func:`_first_nonpositive`.
+
+    A crossing counts only if ``df < 0`` there and the minimum of ``f`` that follows
+    (at the next cut where ``f`` stops falling; none if ``f`` falls for ever) is below
+    ``-noise``.  The first check drops a sign flip of rounding noise where ``f`` rises
+    through zero (two bodies that just collided and separate); the second a tangential
+    touch, a double root, whose minimum is zero to rounding: it exchanges no momentum.
+    Apart from that the computed sign of ``f`` decides everything, so a near-double root
+    (two close real roots, or a complex pair with a small imaginary part) is a crossing
+    exactly when ``f`` dips below zero between them, whatever :func:`numpy.roots` made
+    of it.
+    """
+    c = _trim(coeffs)
+    if len(c) < 2:
+        return
+    bound = _root_bound(c)
+    if bound == 0.0:  # every root at 0 (f = c t^n): any t > 0 is beyond them
+        bound = 1.0
+    if not bound < INF:
+        return
+    derivative = [c[k] * (len(c) - 1 - k) for k in range(len(c) - 1)]
+    cuts = sorted({t for t in _root_real_parts(derivative) if 0.0 < t < bound})
+    points = [0.0, *cuts, bound]
+    values = [f(t) for t in points]
+
+    def deep(k):
+        # The local minimum from point k on: follow the cuts while f falls.  Past the
+        # last cut f falls for ever if its leading coefficient is negative.
+        while k + 1 < len(values) and values[k + 1] < values[k]:
+            k += 1
+        return (k == len(values) - 1 and c[0] < 0.0) or values[k] < -noise(points[k])
+
+    if values[0] <= 0.0 and df(0.0) < 0.0 and deep(0):
+        yield 0.0
+    for k in range(len(points) - 1):
+        if values[k] > 0.0 and values[k + 1] <= 0.0 and deep(k + 1):
+            t = _first_nonpositive(f, df, points[k], points[k + 1], values[k], values[k + 1])
+            if df(t) < 0.0:
+                yield t
+
+
+def _sum_abs(*vectors):
+    """``sum |x_k|``: the scale of the terms that make up a coordinate."""
+    return sum(abs(x) for vec in vectors for x in vec)
+
+
+def circle_contact_time_accelerated(p, v, a, d):
+    """Earliest contact of two bodies whose relative position is ``p + v t + a t^2/2``.
+
+    ``p``, ``v``, ``a``: relative position, velocity and acceleration (a disk against an
+    immovable disk or a wall end point: ``a = g``); ``d`` the distance at contact.
+    ``f(t) = |p + v t + a t^2/2|^2 - d^2`` is a quartic,
+
+        (a.a/4) t^4 + (a.v) t^3 + (v.v + a.p) t^2 + 2 (v.p) t + p.p - d^2,
+
+    and the contact is its first crossing from > 0 to <= 0 (:func:`_crossings`).
+    Returns the time, or inf.
+    """
+    def rel(t):
+        return _at(p, v, a, t)
+
+    def f(t):
+        x, y = rel(t)
+        return x * x + y * y - d * d
+
+    def df(t):
+        x, y = rel(t)
+        return 2.0 * (x * (v[0] + t * a[0]) + y * (v[1] + t * a[1]))
+
+    def noise(t):
+        # Each coordinate is a sum of terms of size ~terms, rounded; f adds squares.
+        x, y = rel(t)
+        terms = _sum_abs(p) + t * _sum_abs(v) + 0.5 * t * t * _sum_abs(a)
+        return 8.0 * EPS * (2.0 * math.hypot(x, y) * terms + x * x + y * y + d * d)
+
+    coeffs = [0.25 * _dot(a, a), _dot(a, v), _dot(v, v) + _dot(a, p), 2.0 * _dot(v, p),
+              _dot(p, p) - d * d]
+    return next(_crossings(coeffs, f, df, noise), INF)
+
+
+def segment_contact_time_accelerated(p, v, g, r, a, b):
+    """Earliest contact of a disk (p, v, r) accelerated by ``g`` with the segment a-b.
+
+    Returns (t, part) with part "side", "start" or "end"; (inf, None) if none.
+
+    Side: with ``n`` the unit normal of the line and ``d(t) = n.(x(t) - a)`` the signed
+    distance of the centre, a parabola in ``t``, the disk starts to overlap the line
+    when ``F(t) = d^2 - r^2`` (a quartic) crosses from > 0 to <= 0: ``d`` reaches ``+r``
+    from above or ``-r`` from below.  That is a side contact if the foot of the centre,
+    ``s = u.(x(t) - a) / u.u``, is on the segment, ``0 <= s <= 1``.  Every crossing is
+    tried in order, not only the first: a disk can pass beside the end of a segment and
+    come back onto its side.  End points: :func:`circle_contact_time_accelerated`.
+    """
+    u = (b[0] - a[0], b[1] - a[1])
+    uu = _dot(u, u)
+    length = math.sqrt(uu)
+    n = (-u[1] / length, u[0] / length)
+
+    def dist(t):
+        x, y = _at(p, v, g, t)
+        return n[0] * (x - a[0]) + n[1] * (y - a[1])
+
+    def f(t):
+        s = dist(t)
+        return (s - r) * (s + r)
+
+    def df(t):
+        return 2.0 * dist(t) * (n[0] * (v[0] + t * g[0]) + n[1] * (v[1] + t * g[1]))
+
+    def noise(t):
+        s = dist(t)
+        terms = _sum_abs(p, a) + t * _sum_abs(v) + 0.5 * t * t * _sum_abs(g)
+        return 8.0 * EPS * (2.0 * abs(s) * terms + s * s + r * r)
+
+    d0 = n[0] * (p[0] - a[0]) + n[1] * (p[1] - a[1])
+    d1 = _dot(n, v)
+    d2 = 0.5 * _dot(n, g)
+    coeffs = [d2 * d2, 2.0 * d2 * d1, d1 * d1 + 2.0 * d2 * d0, 2.0 * d1 * d0, d0 * d0 - r * r]
+    best, part = INF, None
+    for t in _crossings(coeffs, f, df, noise):
+        x, y = _at(p, v, g, t)
+        s = (u[0] * (x - a[0]) + u[1] * (y - a[1])) / uu
+        if 0.0 <= s <= 1.0:
+            best, part = t, "side"
+            break
+    for name, e in (("start", a), ("end", b)):
+        t = circle_contact_time_accelerated((p[0] - e[0], p[1] - e[1]), v, g, r)
+        if t < best:
+            best, part = t, name
+    return best, part
+
+
+def box_contact_time_accelerated(x, v, g, r, length):
+    """Earliest contact of a disk (coordinate x, velocity v, acceleration g along one
+    axis, radius r) with the walls at 0 and ``length`` of that axis: (t, upper).
+
+    The gaps ``x(t) - r`` and ``length - r - x(t)`` are parabolas in ``t``; a contact is
+    a gap's crossing from > 0 to <= 0 (:func:`_crossings`), so a disk moving away from a
+    wall can still come back to it.  ``upper`` tells which wall; (inf, None) if none.
+    """
+    def pos(t):
+        return x + t * v + (0.5 * t * t) * g
+
+    def noise(t):
+        return 8.0 * EPS * (abs(x) + t * abs(v) + 0.5 * t * t * abs(g) + r + length)
+
+    def lower_gap(t):
+        return pos(t) - r
+
+    def upper_gap(t):
+        return length - r - pos(t)
+
+    def lower_slope(t):
+        return v + t * g
+
+    def upper_slope(t):
+        return -(v + t * g)
+
+    lower = next(_crossings([0.5 * g, v, x - r], lower_gap, lower_slope, noise), INF)
+    upper = next(_crossings([-0.5 * g, -v, length - r - x], upper_gap, upper_slope, noise),
+                 INF)
+    if lower == upper == INF:
+        return INF, None
+    return (lower, False) if lower <= upper else (upper, True)
+
+
+def _segment_distance(p, a, b):
+    """Distance from the point ``p`` to the segment a-b."""
+    u = (b[0] - a[0], b[1] - a[1])
+    rel = (p[0] - a[0], p[1] - a[1])
+    s = min(max(_dot(rel, u) / _dot(u, u), 0.0), 1.0)
+    return math.hypot(rel[0] - s * u[0], rel[1] - s * u[1])
+
+
+def _earliest(gap, speed, acceleration, scale):
+    """A lower bound on the time two bodies ``gap`` apart need to touch, with relative
+    speed ``speed`` and acceleration ``acceleration`` (magnitudes): the root of
+    ``speed t + acceleration t^2 / 2 = gap``, for a gap cut by ``1e-9 (gap + scale)``
+    so that rounding cannot make it too large.  0 for bodies (nearly) in contact."""
+    gap -= 1e-9 * (abs(gap) + scale)
+    if gap <= 0.0:
+        return 0.0
+    root = speed + math.sqrt(speed * speed + 2.0 * acceleration * gap)
+    return 2.0 * gap / root if root > 0.0 else INF
+
+
 class ReferenceSimulation:
     """Same constructor and core API as :class:`edmd2d.Simulation`, brute force.
 
-    Methods ``advance(until=None, collisions=None)``, ``kinetic_energy()`` and
-    ``momentum()`` work as in :class:`edmd2d.Simulation`.  Input is trusted (no
-    validation): it is a test oracle.
+    Methods ``advance(until=None, collisions=None)``, ``kinetic_energy()``,
+    ``momentum()``, ``potential_energy()`` and ``total_energy()`` work as in
+    :class:`edmd2d.Simulation`.  Input is trusted (no validation): it is a test oracle.
 
     Parameters
     ----------
@@ -121,6 +429,10 @@ class ReferenceSimulation:
         taking part collided less than ``tc`` before (``t - t_last < tc``).  Immovable
         disks act as walls and never make a collision elastic; ``tc = 0`` switches the
         rule off.
+    gravity : (float, float), default (0.0, 0.0)
+        A uniform acceleration of every movable disk.  Immovable disks feel none (they
+        keep their velocity, zero unless they are pistons) and walls stay put.
+        ``(0, 0)`` runs the straight-flight code, bit for bit as without it.
 
     Attributes
     ----------
@@ -137,7 +449,14 @@ class ReferenceSimulation:
         immovable disks).
     dissipated : float
         Kinetic energy lost in collisions so far.  ``kinetic_energy() + dissipated`` is
-        constant to rounding, unless immovable disks move (pistons do work).
+        constant to rounding, unless immovable disks move (pistons do work); under
+        gravity ``total_energy() + dissipated`` is.
+    gravity : tuple of float
+        The acceleration ``(gx, gy)``.
+    images : list of [int, int]
+        For each disk, the whole periodic lengths taken off each coordinate when it was
+        wrapped back into the box: ``p + images * (width, height)`` is its unwrapped
+        position, which :meth:`potential_energy` uses.
 
     Notes
     -----
@@ -147,6 +466,38 @@ class ReferenceSimulation:
     immovable), which conserves momentum and turns ``vn`` into ``-e vn``.  At a box wall
     the normal velocity component becomes ``-e_w`` times itself; at a segment side or end
     point with unit normal ``n``, ``v' = v - (1+e_w)(v.n) n``.
+
+    Under gravity, between events ``x(t) = x0 + v0 t + g t^2 / 2`` and
+    ``v(t) = v0 + g t`` for movable disks, and collisions act on the velocities at the
+    contact time as above.  Each contact is a function ``f`` of time that is positive
+    while the two bodies are apart: the squared distance minus its value at contact
+    for two disks or a disk and a wall end point (a quadratic for two movable disks,
+    whose relative acceleration is zero, a quartic otherwise), ``d^2 - r^2`` for the
+    signed distance ``d`` of the centre from a segment's line (a quartic), the gap to
+    a box wall (a parabola).  The contact is the first ``t >= 0`` at which ``f`` turns
+    from > 0 to <= 0, or ``t = 0`` if ``f(0) <= 0`` (touching or overlapping by
+    rounding) and ``f'(0) < 0`` (approaching).  A double root of ``f`` (a tangential
+    touch, ``f`` at its minimum within rounding of zero) exchanges no momentum and is
+    no event, and bodies that touch and separate may meet again later: a disk that
+    bounced off a floor, a segment or an immovable disk comes back.  A side contact
+    also needs the foot of the centre on the segment; the crossings are tried in
+    order, as a disk can pass beside a segment's end and later fall back onto its
+    side.
+
+    To find the crossings, the real parts of all roots of ``f'``
+    (:func:`numpy.roots`, complex roots included so that none is lost to a small
+    imaginary part) cut ``[0, T]``, ``T`` beyond every root of ``f``, into pieces on
+    which ``f`` is monotonic.  A piece with ``f > 0`` at its start and ``f <= 0`` at its
+    end holds a crossing, located to the last float by safeguarded Newton steps and
+    bisection on the sign of ``f``, evaluated from the positions rather than the
+    polynomial's coefficients.  A crossing is dropped if ``f' >= 0`` there (rounding
+    noise of two bodies separating) or if ``f``'s following minimum is not below
+    zero by more than its rounding error (a tangential touch).
+
+    A resting contact, a disk at rest on a floor with gravity pressing it down, is no
+    event-driven motion: it has no crossing (``f'(0) = 0``) and the disk sinks through.
+    The periodic look-ahead window accounts for the acceleration: a disk moves at most
+    ``|v| h + |g| h^2 / 2`` in a time ``h``.
 
     Examples
     --------
@@ -161,11 +512,23 @@ class ReferenceSimulation:
     [[-0.5, 0.0], [0.5, 0.0]]
     >>> ref.dissipated, ref.kinetic_energy()
     (0.75, 0.25)
+
+    Dropped from 2 above the floor with ``g = 4``: it lands at ``t = 1``, hops back up
+    every 2 and is at rest at its starting height at ``t = 6``, all its energy
+    potential again (``m g h = 4 * 3``).
+
+    >>> ref = ReferenceSimulation([[5.0, 3.0]], [[0.0, 0.0]], radii=1.0,
+    ...                           box=ed.Box(10.0, 10.0, periodic=False),
+    ...                           gravity=(0.0, -4.0))
+    >>> ref.advance(until=6.0).events
+    [(1.0, 'box', 0, 2), (3.0, 'box', 0, 2), (5.0, 'box', 0, 2)]
+    >>> ref.kinetic_energy(), ref.potential_energy(), ref.total_energy()
+    (0.0, 12.0, 12.0)
     """
 
     def __init__(self, positions, velocities, radii, masses=1.0, box: Box | None = None,
                  walls=(), *, time=0.0, species=None, restitution=1.0,
-                 wall_restitution=1.0, tc=0.0):
+                 wall_restitution=1.0, tc=0.0, gravity=(0.0, 0.0)):
         n = len(positions)
         self.box = box
         self.walls = [w if isinstance(w, Wall) else Wall(*w) for w in walls]
@@ -186,6 +549,29 @@ class ReferenceSimulation:
         self.tc = float(tc)
         self.t_last = [-INF] * n
         self.dissipated = 0.0
+        gx, gy = gravity
+        self.gravity = (float(gx), float(gy))
+        # Whole periodic lengths taken off each coordinate by _wrap: the unwrapped
+        # position, which the potential energy needs, is p + images * length.
+        self.images = [[0, 0] for _ in range(n)]
+        # The box walls (0..3: x=0, x=width, y=0, y=height) each disk rests on.  An
+        # inelastic model with tc > 0 holds a disk on a wall that gravity presses it
+        # into once its next bounce would come within tc (and a disk that starts at
+        # rest touching such a wall); a collision with a disk or a segment that gives it
+        # a velocity along the wall's normal frees it.
+        self.resting = [set() for _ in range(n)]
+        if self._holds():
+            for k in range(n):
+                for side in range(4):
+                    axis = side // 2
+                    if (self.box.periodic[axis] or math.isinf(self.m[k])
+                            or self.v[k][axis] != 0.0 or self._pressing(side) >= 0.0):
+                        continue
+                    length = (self.box.width, self.box.height)[axis]
+                    gap = (self.p[k][axis] - self.r[k] if side % 2 == 0
+                           else length - self.r[k] - self.p[k][axis])
+                    if gap <= 1e-9 * self.r[k]:
+                        self.resting[k].add(side)
 
     # -- the images of space: shifts to try on periodic axes.  Within one look-ahead
     # window (see _horizon) no disk moves more than a quarter of a periodic length, so
@@ -201,12 +587,52 @@ class ReferenceSimulation:
         lengths = [length for axis, length in enumerate((self.box.width, self.box.height))
                    if self.box.periodic[axis]]
         vmax = max((math.hypot(*v) for v in self.v), default=0.0)
+        if self._accelerated():
+            # A disk moves at most vmax h + |g| h^2 / 2 in a time h: the window is the
+            # positive root of vmax h + |g| h^2 / 2 = L / 4, written without cancellation.
+            gabs = math.hypot(*self.gravity)
+            if not lengths:
+                return INF
+            half = 0.5 * min(lengths)
+            return half / (vmax + math.sqrt(vmax * vmax + gabs * half))
         if not lengths or vmax == 0.0:
             return INF
         return min(lengths) / (4.0 * vmax)
 
+    def _accelerated(self):
+        """Whether gravity is on and some disk feels it (a movable disk)."""
+        return self.gravity != (0.0, 0.0) and any(not math.isinf(m) for m in self.m)
+
+    def _acceleration(self, k):
+        """Disk ``k``'s acceleration: gravity if movable (less the components held by
+        the walls it rests on), zero if immovable."""
+        if math.isinf(self.m[k]):
+            return (0.0, 0.0)
+        held = {side // 2 for side in self.resting[k]}
+        return tuple(0.0 if axis in held else g for axis, g in enumerate(self.gravity))
+
+    def _release(self, k):
+        """After a collision, disk ``k`` stays held only by the walls along whose normal
+        it still does not move."""
+        self.resting[k] = {side for side in self.resting[k] if self.v[k][side // 2] == 0.0}
+
+    def _holds(self):
+        """Whether walls hold disks at rest: some coefficient below 1, and tc > 0."""
+        table = (self.restitution if isinstance(self.restitution, list)
+                 else [[self.restitution]])
+        inelastic = self.wall_restitution < 1.0 or any(e < 1.0 for row in table for e in row)
+        return inelastic and self.tc > 0.0
+
+    def _pressing(self, side):
+        """Gravity's component along the inward normal of box wall ``side`` (negative:
+        it presses disks into that wall)."""
+        g = self.gravity[side // 2]
+        return g if side % 2 == 0 else -g
+
     def next_event(self):
         """The earliest event from now: (dt, kind, i, partner, detail)."""
+        if self._accelerated():
+            return self._next_event_accelerated()
         best = (INF, None, -1, -1, None)
         n = len(self.p)
         shifts = self._shifts()
@@ -239,18 +665,101 @@ class ReferenceSimulation:
                     best = (t, "box", i, side, None)
         return best
 
+    def _next_event_accelerated(self):
+        """:meth:`next_event` under gravity.
+
+        Two movable disks (or two immovable ones) have no relative acceleration: the
+        quadratic of straight flight.  A movable disk against an immovable one, a wall
+        end point, a wall side or a box wall: the contact functions of
+        :func:`circle_contact_time_accelerated`, :func:`segment_contact_time_accelerated`
+        and :func:`box_contact_time_accelerated`.
+
+        The candidates are the same as in straight flight (every pair, image, wall and
+        box wall), only examined in order of a lower bound on their contact time:
+        bodies a gap ``s`` apart, with relative speed ``w`` and acceleration ``a``, close
+        it no sooner than the root of ``w t + a t^2 / 2 = s``.  Once that bound exceeds
+        the earliest contact found, no later candidate can come first and the search
+        stops.  Of equal times the candidate first in the loop order of straight flight
+        wins, as there.
+        """
+        n = len(self.p)
+        shifts = self._shifts()
+        acc = [self._acceleration(k) for k in range(n)]
+        candidates = []  # (lower bound on the time, loop order, kind, i, partner, detail)
+        for i in range(n):
+            p, v, r = self.p[i], self.v[i], self.r[i]
+            for j in range(i + 1, n):
+                dv = (v[0] - self.v[j][0], v[1] - self.v[j][1])
+                da = (acc[i][0] - acc[j][0], acc[i][1] - acc[j][1])
+                d = r + self.r[j]
+                for sx, sy in shifts:
+                    dp = (p[0] - self.p[j][0] - sx, p[1] - self.p[j][1] - sy)
+                    gap = math.hypot(*dp) - d
+                    candidates.append((_earliest(gap, math.hypot(*dv), math.hypot(*da), d),
+                                       len(candidates), "disk", i, j, (sx, sy, dp, dv, da)))
+            for k, wall in enumerate(self.walls):
+                for sx, sy in shifts:
+                    a = (wall.start[0] + sx, wall.start[1] + sy)
+                    b = (wall.end[0] + sx, wall.end[1] + sy)
+                    gap = _segment_distance(p, a, b) - r
+                    candidates.append((_earliest(gap, math.hypot(*v), math.hypot(*acc[i]), r),
+                                       len(candidates), "wall", i, k, (a, b)))
+            for axis, length in enumerate((self.box.width, self.box.height)):
+                if not self.box.periodic[axis]:
+                    gap = min(p[axis], length - p[axis]) - r
+                    candidates.append((_earliest(gap, abs(v[axis]), abs(acc[i][axis]), r),
+                                       len(candidates), "box", i, axis, length))
+        best, best_key = (INF, None, -1, -1, None), (INF, -1)
+        for bound, order, kind, i, partner, data in sorted(candidates, key=lambda c: c[:2]):
+            if bound > best[0]:
+                break
+            p, v, r = self.p[i], self.v[i], self.r[i]
+            if kind == "disk":
+                sx, sy, dp, dv, da = data
+                d = r + self.r[partner]
+                if da == (0.0, 0.0):
+                    t = circle_contact_time(dp, dv, d)
+                else:
+                    t = circle_contact_time_accelerated(dp, dv, da, d)
+                event = (t, "disk", i, partner, (sx, sy))
+            elif kind == "wall":
+                a, b = data
+                if acc[i] == (0.0, 0.0):
+                    t, part = segment_contact_time(p, v, r, a, b)
+                else:
+                    t, part = segment_contact_time_accelerated(p, v, acc[i], r, a, b)
+                event = (t, "wall", i, partner, (part, a, b))
+            else:
+                axis = partner
+                t, upper = box_contact_time_accelerated(p[axis], v[axis], acc[i][axis], r,
+                                                        data)
+                event = (t, "box", i, 2 * axis + int(bool(upper)), None)
+            if (t, order) < best_key:
+                best, best_key = event, (t, order)
+        return best
+
     def _drift(self, dt):
-        """Move every disk along its straight line for ``dt``."""
-        self.p = [[p[0] + dt * v[0], p[1] + dt * v[1]] for p, v in zip(self.p, self.v)]
+        """Move every disk for ``dt``: along its straight line, or on its parabola under
+        gravity (movable disks; their velocities change by ``g dt``)."""
+        if not self._accelerated():
+            self.p = [[p[0] + dt * v[0], p[1] + dt * v[1]] for p, v in zip(self.p, self.v)]
+            self.time += dt
+            return
+        acc = [self._acceleration(k) for k in range(len(self.p))]
+        self.p = [list(_at(p, v, a, dt)) for p, v, a in zip(self.p, self.v, acc)]
+        self.v = [[v[0] + dt * a[0], v[1] + dt * a[1]] for v, a in zip(self.v, acc)]
         self.time += dt
 
     def _wrap(self):
         """Bring centres back into the box on periodic axes (after an event is resolved,
         so the image chosen by ``next_event`` still describes the contact)."""
-        for p in self.p:
+        for p, images in zip(self.p, self.images):
             for axis, length in enumerate((self.box.width, self.box.height)):
                 if self.box.periodic[axis]:
-                    p[axis] %= length
+                    wrapped = p[axis] % length
+                    if wrapped != p[axis]:
+                        images[axis] += round((p[axis] - wrapped) / length)
+                    p[axis] = wrapped
 
     def _recent(self, k):
         """The TC rule for disk ``k``: movable and collided less than ``tc`` ago."""
@@ -297,6 +806,7 @@ class ReferenceSimulation:
             for disk in (i, j):
                 if not math.isinf(self.m[disk]):
                     self.t_last[disk] = self.time
+                self._release(disk)
             self.collisions += 1
             return
         if math.isinf(self.m[i]):
@@ -306,6 +816,17 @@ class ReferenceSimulation:
             axis = partner // 2
             vn = v[axis]
             v[axis] = -e * vn
+            self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
+            g_in = self._pressing(partner)
+            rebound = abs(v[axis])
+            # Rest: the rebound would bring the disk back in 2 v / |g_n| < tc.
+            if self._holds() and g_in < 0.0 and 2.0 * rebound < -g_in * self.tc:
+                self.dissipated += 0.5 * self.m[i] * rebound * rebound
+                v[axis] = 0.0
+                self.resting[i].add(partner)
+            self.t_last[i] = self.time
+            self.wall_collisions += 1
+            return
         else:
             part, a, b = detail
             if part == "side":
@@ -319,6 +840,7 @@ class ReferenceSimulation:
             vn = _dot(v, n)
             k = 1.0 + e  # exactly 2.0 for e = 1, as in the elastic reflection
             self.v[i] = [v[0] - k * vn * n[0], v[1] - k * vn * n[1]]
+            self._release(i)
         self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
         self.t_last[i] = self.time
         self.wall_collisions += 1
@@ -362,6 +884,20 @@ class ReferenceSimulation:
     def momentum(self):
         return sum((m * np.array(v) for m, v in zip(self.m, self.v) if not math.isinf(m)),
                    np.zeros(2))
+
+    def potential_energy(self):
+        """``-sum m g.x`` over the movable disks, ``x`` the unwrapped centre (the stored
+        one plus the whole periodic lengths :meth:`_wrap` took off): the height gained
+        through a periodic boundary is kept."""
+        gx, gy = self.gravity
+        w, h = self.box.width, self.box.height
+        return -sum(m * (gx * (p[0] + k[0] * w) + gy * (p[1] + k[1] * h))
+                    for m, p, k in zip(self.m, self.p, self.images) if not math.isinf(m))
+
+    def total_energy(self):
+        """Kinetic plus potential energy: constant in an elastic run (with immovable
+        disks at rest), and ``total_energy() + dissipated`` constant otherwise."""
+        return self.kinetic_energy() + self.potential_energy()
 
 
 def _per_disk(value, n):

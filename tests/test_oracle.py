@@ -119,3 +119,46 @@ def test_same_events_under_gravity_as_reference(seed, periodic, walls_kind, grav
     np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-9)
     assert sim.total_energy() + sim.dissipated_energy() == pytest.approx(
         ref.total_energy() + ref.dissipated, rel=1e-9)
+
+
+THERMAL_CASES = [(seed, BOX_KINDS[seed % 4], ("none", "divider", "polygon")[seed % 3])
+                 for seed in range(12)]
+
+
+@pytest.mark.parametrize("seed, periodic, walls_kind", THERMAL_CASES)
+def test_same_events_with_thermostat_and_heated_walls_as_reference(seed, periodic,
+                                                                   walls_kind):
+    """Andersen redraws at their exact times and heated walls (box walls and a
+    segment), drawn from one seeded stream: the same events, draws and final states as
+    the oracle, which takes its numbers from the same stream in the same order."""
+    rng = np.random.default_rng(900 + seed)
+    box = ed.Box(rng.uniform(3.0, 7.0), rng.uniform(3.0, 7.0), periodic=periodic)
+    walls = _walls(walls_kind, box)
+    pos, vel, rad, mass = random_system(rng, int(rng.integers(2, 9)), box, walls)
+    if seed % 3 == 0 and len(pos) > 2:
+        mass[0] = np.inf
+        vel[0] = 0.0
+    heated = {name: 1.5 + k for k, name in enumerate(("left", "right", "bottom", "top"))
+              if not box.periodic[k // 2] and k % 2 == seed % 2}
+    if walls:
+        heated[0] = 0.7
+    options = dict(wall_temperatures=heated, thermostat=(1.2, 0.8), seed=seed,
+                   gravity=(0.0, -1.0) if seed % 4 == 1 else (0.0, 0.0))
+    sim = ed.Simulation(pos, vel, rad, mass, box=box, walls=walls, **options)
+    sim._record_events(10_000)
+    ref = ReferenceSimulation(pos, vel, rad, mass, box=box, walls=walls, **options)
+    t_end = 2.0
+    sim.advance(until=t_end)
+    ref.advance(until=t_end)
+    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
+    assert [e[1:] for e in got] == [e[1:] for e in want]
+    assert sim.counts.redraws == ref.redraws > 0
+    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-9)
+    d = sim.positions - ref.positions
+    for axis in range(2):
+        if box.periodic[axis]:
+            d[:, axis] -= box.size[axis] * np.round(d[:, axis] / box.size[axis])
+    np.testing.assert_allclose(d, 0.0, atol=1e-9)
+    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(sim.wall_heat(), ref.wall_heat, rtol=1e-9, atol=1e-12)
+    assert sim.thermostat_energy() == pytest.approx(ref.thermostat_energy, rel=1e-9)

@@ -4,8 +4,8 @@ A model changes what a contact does to the disks' velocities.
 :class:`edmd2d.Simulation` builds its model from its keywords (``restitution=``,
 ``wall_restitution=``, ``tc=``); elastic disks need none and run the engine's default
 (fastest) path.  A model holds its parameters and any per-disk state it needs (kept in
-the engine's internal row order: :meth:`Restitution.permuted` follows the engine's
-re-sorts), and hands the compiled engine one tuple (:meth:`Restitution.engine_params`),
+the engine's internal row order: :meth:`Model.permuted` follows the engine's
+re-sorts), and hands the compiled engine one tuple (:meth:`Model.engine_params`),
 whose functions are in ``_engine/response.py``.
 
 Restitution and the TC model
@@ -54,7 +54,7 @@ import numpy as np
 from ._engine import response as _response
 from ._validate import as_float_array
 
-__all__ = ["Restitution", "STALL_COLLISIONS", "default_tc"]
+__all__ = ["Model", "STALL_COLLISIONS", "default_tc"]
 
 STALL_COLLISIONS = _response.STALL_COLLISIONS
 # Largest species id: a table of coefficients has one row per species up to the largest.
@@ -72,19 +72,32 @@ def default_tc(radii: np.ndarray, velocities: np.ndarray, movable: np.ndarray) -
     return 1e-5 * d / v if v > 0.0 else 1e-5 * d
 
 
-class Restitution:
-    """Inelastic disks: coefficients of normal restitution and the TC model.
+class Model:
+    """What contacts and the thermostat do, for the compiled engine: restitution and
+    the TC model, heated walls, and an Andersen thermostat.
 
     Parameters
     ----------
     table : array_like, shape (S, S)
         Coefficient for each pair of species, symmetric, each in ``(0, 1]``.
     wall : float
-        Coefficient against box walls and wall segments, in ``(0, 1]``.
+        Coefficient against box walls and wall segments that are not heated, in
+        ``(0, 1]``.
     tc : float
         TC-model duration, ``>= 0`` (see the module notes).
     species : array_like of int, shape (N,)
         Each disk's species, in the engine's internal row order.
+    wall_temperatures : array_like, shape (4 + n_segments,)
+        ``kT`` of each box wall (x=0, x=width, y=0, y=height) and each wall segment;
+        0 for a wall that is not heated.
+    thermostat : (float, float), optional
+        ``(kT, rate)`` of the Andersen thermostat: each movable disk's velocity is
+        redrawn from the Maxwell-Boltzmann distribution at ``kT`` at the events of a
+        Poisson process of ``rate`` per disk.  Default: none.
+    rng : numpy.random.Generator, optional
+        The source of the random numbers (heated walls, thermostat).
+    time : float
+        The clock, from which the thermostat's first redraw is drawn.
 
     Attributes
     ----------
@@ -92,9 +105,17 @@ class Restitution:
         Time of each disk's last collision (``-inf`` before its first).
     streak : ndarray, shape (N,)
         Each disk's collisions in a row at the same time to within rounding.
+    hold : float
+        The ``tc`` with which walls hold disks at rest under gravity: ``tc`` if some
+        coefficient is below 1, else 0 (elastic disks never come to rest).
     """
 
-    def __init__(self, table: np.ndarray, wall: float, tc: float, species: np.ndarray):
+    # Uniform random numbers handed to the engine at a time; it returns for more
+    # when fewer than layout's per-event need are left.
+    BUFFER = 1 << 14
+
+    def __init__(self, table: np.ndarray, wall: float, tc: float, species: np.ndarray,
+                 wall_temperatures, thermostat=None, rng=None, time=0.0):
         self.table = np.ascontiguousarray(table, np.float64)
         self.wall = float(wall)
         self.tc = float(tc)
@@ -102,12 +123,44 @@ class Restitution:
         n = len(self.species)
         self.t_last = np.full(n, -np.inf)
         self.streak = np.zeros(n, np.int64)
+        inelastic = bool((self.table < 1.0).any()) or self.wall < 1.0
+        self.hold = self.tc if inelastic else 0.0
+        # (One entry per box wall and segment: the engine reads it at every contact.)
+        self.wall_kt = np.ascontiguousarray(wall_temperatures, np.float64)
+        kt, rate = (0.0, 0.0) if thermostat is None else thermostat
+        self.rng = np.random.default_rng() if rng is None else rng
+        # (kT, total rate over all rows, time of the next redraw)
+        self.thermo = np.array([kt, rate * n, math.inf])
+        random = rate > 0.0 or bool((self.wall_kt > 0.0).any())
+        self.buffer = np.zeros(self.BUFFER if random else 0)
+        self.cursor = np.array([len(self.buffer)], np.int64)
+        if rate > 0.0:
+            # (Every draw comes from the one stream of uniforms u: the first waiting
+            # time is -ln(1 - u) / rate, as the engine draws the next ones.)
+            self.thermo[2] = time - math.log(1.0 - self.rng.random()) / self.thermo[1]
+        self.refill()
+
+    def refill(self) -> None:
+        """Top the buffer of uniform random numbers up from :attr:`rng` (the ones left
+        move to its front, so the draws follow one stream whatever the refills)."""
+        left = self.buffer[self.cursor[0]:].copy()
+        self.buffer[:len(left)] = left
+        self.buffer[len(left):] = self.rng.random(len(self.buffer) - len(left))
+        self.cursor[0] = 0
+
+    @property
+    def thermostat(self) -> tuple[float, float] | None:
+        """``(kT, rate per disk)`` of the Andersen thermostat, or ``None``."""
+        if self.thermo[1] == 0.0:
+            return None
+        return float(self.thermo[0]), float(self.thermo[1]) / len(self.species)
 
     def engine_params(self) -> tuple:
         """The tuple the compiled engine reads (see ``_engine/response.py``)."""
-        return (self.table, self.species, self.wall, self.tc, self.t_last, self.streak)
+        return (self.table, self.species, self.wall, self.tc, self.t_last, self.streak,
+                self.hold, self.wall_kt, self.thermo, self.buffer, self.cursor)
 
-    def permuted(self, perm: np.ndarray) -> Restitution:
+    def permuted(self, perm: np.ndarray) -> Model:
         """A copy that follows a re-sort of the engine's rows (new row ``k`` is old row
         ``perm[k]``); ``self`` is left as it was."""
         new = copy.copy(self)
@@ -116,10 +169,31 @@ class Restitution:
         new.streak = np.ascontiguousarray(self.streak[perm])
         return new
 
+    def __setstate__(self, state: dict) -> None:
+        # Saved before heated walls and thermostats: none of either.
+        if "hold" not in state:
+            inelastic = bool((state["table"] < 1.0).any()) or state["wall"] < 1.0
+            state["hold"] = state["tc"] if inelastic else 0.0
+            state["wall_kt"] = np.zeros(4)
+            state["thermo"] = np.array([0.0, 0.0, math.inf])
+            state["rng"] = np.random.default_rng()
+            state["buffer"] = np.zeros(0)
+            state["cursor"] = np.zeros(1, np.int64)
+        vars(self).update(state)
+
     def __repr__(self) -> str:
         coeff = (f"{self.table[0, 0]:g}" if self.table.size == 1
                  else f"table of {self.table.shape[0]} species")
-        return f"Restitution(e={coeff}, wall={self.wall:g}, tc={self.tc:g})"
+        text = f"Model(e={coeff}, wall={self.wall:g}, tc={self.tc:g}"
+        if (self.wall_kt > 0.0).any():
+            text += f", heated walls={np.flatnonzero(self.wall_kt).tolist()}"
+        if self.thermostat is not None:
+            text += f", thermostat=(kT={self.thermostat[0]:g}, rate={self.thermostat[1]:g})"
+        return text + ")"
+
+
+# (The name of the class before it held more than restitution: old pickles refer to it.)
+Restitution = Model
 
 
 def restitution_table(value, n_species: int) -> np.ndarray:

@@ -433,6 +433,25 @@ class ReferenceSimulation:
         A uniform acceleration of every movable disk.  Immovable disks feel none (they
         keep their velocity, zero unless they are pistons) and walls stay put.
         ``(0, 0)`` runs the straight-flight code, bit for bit as without it.
+    wall_temperatures : dict, optional
+        Heated walls ``{wall: kT}`` (``"left"``, ``"right"``, ``"bottom"``, ``"top"``
+        or a segment index): a disk hitting one leaves with its normal velocity
+        ``sqrt(kT/m) sqrt(-2 ln(1 - u))`` and its tangential velocity
+        ``sqrt(kT/m) g`` (``g`` Gaussian), along the wall's unit normal ``n`` into the
+        box and the tangent ``(-n_y, n_x)``.
+    thermostat : (float, float), optional
+        ``(kT, rate)``: an Andersen thermostat.  Its redraws come at the events of a
+        Poisson process of ``rate * N`` (waiting times ``-ln(1 - u) / (rate N)``),
+        each picking disk ``floor(u N)`` (an immovable one is left alone) and drawing
+        both velocity components as ``sqrt(kT/m) g``.
+    seed : int, optional
+        Seed of the ``numpy.random.default_rng`` stream of uniforms ``u`` in
+        ``[0, 1)`` behind every random draw, used in this order: the first waiting
+        time (if there is a thermostat); then, at each redraw, the disk, the next
+        waiting time and two Gaussians; at each heated-wall contact the normal speed
+        and a Gaussian.  A Gaussian takes two: ``sqrt(-2 ln(1 - u1)) cos(2 pi u2)``.
+        These are the engine's draws, in the engine's order, so that a seed gives
+        the same run in both.
 
     Attributes
     ----------
@@ -528,7 +547,8 @@ class ReferenceSimulation:
 
     def __init__(self, positions, velocities, radii, masses=1.0, box: Box | None = None,
                  walls=(), *, time=0.0, species=None, restitution=1.0,
-                 wall_restitution=1.0, tc=0.0, gravity=(0.0, 0.0)):
+                 wall_restitution=1.0, tc=0.0, gravity=(0.0, 0.0),
+                 wall_temperatures=None, thermostat=None, seed=None):
         n = len(positions)
         self.box = box
         self.walls = [w if isinstance(w, Wall) else Wall(*w) for w in walls]
@@ -560,6 +580,17 @@ class ReferenceSimulation:
         # rest touching such a wall); a collision with a disk or a segment that gives it
         # a velocity along the wall's normal frees it.
         self.resting = [set() for _ in range(n)]
+        names = {"left": 0, "right": 1, "bottom": 2, "top": 3}
+        self.wall_kt = {(names[k] if isinstance(k, str) else 4 + k): float(t)
+                        for k, t in (wall_temperatures or {}).items()}
+        self.thermostat = thermostat
+        self.rng = np.random.default_rng(seed)
+        self.wall_heat = [0.0] * (4 + len(self.walls))  # energy each wall gave the disks
+        self.thermostat_energy = 0.0
+        self.redraws = 0
+        self.next_redraw = INF
+        if thermostat is not None:
+            self.next_redraw = self.time + self._waiting_time()
         if self._holds():
             for k in range(n):
                 for side in range(4):
@@ -610,6 +641,43 @@ class ReferenceSimulation:
             return (0.0, 0.0)
         held = {side // 2 for side in self.resting[k]}
         return tuple(0.0 if axis in held else g for axis, g in enumerate(self.gravity))
+
+    # -- random draws: all from one stream of uniforms, as documented above
+    def _u(self):
+        return float(self.rng.random())
+
+    def _gauss(self):
+        r = math.sqrt(-2.0 * math.log(1.0 - self._u()))
+        return r * math.cos(2.0 * math.pi * self._u())
+
+    def _waiting_time(self):
+        return -math.log(1.0 - self._u()) / (self.thermostat[1] * len(self.p))
+
+    def _redraw(self):
+        """A thermostat event at the current time."""
+        n = len(self.p)
+        k = min(int(self._u() * n), n - 1)
+        self.next_redraw += self._waiting_time()
+        if math.isinf(self.m[k]):
+            return
+        s = math.sqrt(self.thermostat[0] / self.m[k])
+        before = _dot(self.v[k], self.v[k])
+        vx = s * self._gauss()
+        vy = s * self._gauss()
+        self.v[k] = [vx, vy]
+        self.thermostat_energy += 0.5 * self.m[k] * (vx * vx + vy * vy - before)
+        self.resting[k].clear()
+        self.redraws += 1
+        self.events.append((self.time, "thermostat", k, -1))
+
+    def _heat(self, i, wall, n):
+        """Disk ``i`` leaves heated ``wall`` (normal ``n`` into the box)."""
+        s = math.sqrt(self.wall_kt[wall] / self.m[i])
+        before = _dot(self.v[i], self.v[i])
+        vn = s * math.sqrt(-2.0 * math.log(1.0 - self._u()))
+        vt = s * self._gauss()
+        self.v[i] = [vn * n[0] - vt * n[1], vn * n[1] + vt * n[0]]
+        self.wall_heat[wall] += 0.5 * self.m[i] * (_dot(self.v[i], self.v[i]) - before)
 
     def _release(self, k):
         """After a collision, disk ``k`` stays held only by the walls along whose normal
@@ -812,6 +880,28 @@ class ReferenceSimulation:
         if math.isinf(self.m[i]):
             raise RuntimeError(f"immovable disk {i} reaches a wall")
         e = self._wall_restitution(i)
+        wall = partner if kind == "box" else 4 + partner
+        if wall in self.wall_kt:
+            if kind == "box":
+                sign = 1.0 if partner % 2 == 0 else -1.0
+                n = (sign, 0.0) if partner < 2 else (0.0, sign)
+            else:
+                part, a, b = detail
+                if part == "side":
+                    n = (a[1] - b[1], b[0] - a[0])
+                    if _dot(n, (p[0] - a[0], p[1] - a[1])) < 0.0:
+                        n = (-n[0], -n[1])
+                else:
+                    end = a if part == "start" else b
+                    n = (p[0] - end[0], p[1] - end[1])
+                norm = math.sqrt(_dot(n, n))
+                n = (n[0] / norm, n[1] / norm)
+            self._heat(i, wall, n)
+            self.t_last[i] = self.time
+            self.wall_collisions += 1
+            if kind != "box":
+                self._release(i)
+            return
         if kind == "box":
             axis = partner // 2
             vn = v[axis]
@@ -853,6 +943,15 @@ class ReferenceSimulation:
         while done < todo:
             dt, kind, i, partner, detail = self.next_event()
             horizon = self._horizon()
+            wait = self.next_redraw - self.time
+            if wait <= min(dt, horizon) and self.next_redraw <= target:
+                # A thermostat redraw comes first (at a tie with a contact, too).
+                t_redraw = self.next_redraw
+                self._drift(wait)
+                self.time = t_redraw
+                self._wrap()
+                self._redraw()
+                continue
             if dt > horizon and self.time + horizon < target:
                 # Nothing within the look-ahead window: move there and look again.
                 self._drift(horizon)

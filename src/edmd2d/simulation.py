@@ -37,7 +37,8 @@ _CHUNK_EVENTS = 1 << 22
 _REORDER_MIN_DISKS = 1024
 _REORDER_EVENTS_PER_DISK = 20
 
-_KIND_NAMES = {_layout.DISK: "disk", _layout.SEGMENT: "wall", _layout.BOX: "box"}
+_KIND_NAMES = {_layout.DISK: "disk", _layout.SEGMENT: "wall", _layout.BOX: "box",
+               _layout.KICK: "thermostat"}
 
 
 @dataclass(frozen=True)
@@ -53,10 +54,12 @@ class Counts:
     cell_crossings : int
         Grid bookkeeping events: a disk centre moved into another cell.
     events : int
-        All processed events: the sum of the three above.
+        All processed events: the sum of the three above and of ``redraws``.
     stale : int
         Predictions found invalid when they came due (the partner had changed course)
         and recomputed; not physical events, not included in ``events``.
+    redraws : int
+        Velocities redrawn by the thermostat.
     """
 
     collisions: int
@@ -64,6 +67,7 @@ class Counts:
     cell_crossings: int
     events: int
     stale: int
+    redraws: int = 0
 
 
 class Simulation:
@@ -121,7 +125,27 @@ class Simulation:
         :meth:`potential_energy` and :meth:`total_energy` include ``m g.h``.  A movable
         disk may not start at rest against a wall that gravity presses it into (a
         resting contact is not an event-driven motion): lift it by a gap, or give it a
-        speed.
+        speed.  An inelastic model (a coefficient below 1, ``tc > 0``) lets the wall
+        hold such a disk, and holds a disk whose bounces on a box wall shrink until
+        the next would come within ``tc``: it then slides along the wall until a
+        collision lifts it.
+    wall_temperatures : dict, optional
+        Heated walls: ``{wall: kT}``, ``wall`` a box wall (``"left"``, ``"right"``,
+        ``"bottom"``, ``"top"``, or ``"x=0"``, ``"x=width"``, ``"y=0"``,
+        ``"y=height"``) or the index of a wall segment, ``kT > 0``.  A disk that hits a
+        heated wall leaves it with a velocity drawn from the wall's temperature (the
+        normal component from the flux-weighted distribution
+        ``(m v / kT) exp(-m v^2 / 2kT)``, the tangential one Gaussian with variance
+        ``kT / m``) instead of being reflected; :meth:`wall_heat` sums the energy each
+        wall gives.
+    thermostat : (float, float), optional
+        An Andersen thermostat ``(kT, rate)``: each movable disk's velocity is redrawn
+        from the Maxwell-Boltzmann distribution at ``kT`` at the events of a Poisson
+        process of ``rate`` (per disk and unit time, ``>= 0``), each at its exact time
+        (an event of the run, after which the disk is predicted afresh).
+    seed : int or numpy.random.Generator, optional
+        The random numbers of heated walls and the thermostat: a run is reproducible
+        from its seed (and continues the same stream after copies and pickles).
 
     Raises
     ------
@@ -169,6 +193,9 @@ class Simulation:
         wall_restitution=1.0,
         tc: float | None = None,
         gravity=None,
+        wall_temperatures=None,
+        thermostat=None,
+        seed=None,
     ) -> None:
         if box is None:
             raise TypeError("box is required: pass box=edmd2d.Box(width, height, periodic=...)")
@@ -208,7 +235,9 @@ class Simulation:
                 raise ValueError(
                     f"cell_size must be at least the largest diameter {dmax}, got {cell_size}"
                 )
-        model = _build_model(species, restitution, wall_restitution, tc, rad, vel, mass)
+        model = _build_model(species, restitution, wall_restitution, tc, rad, vel, mass,
+                             _wall_temperatures(wall_temperatures, box, len(wall_list)),
+                             _thermostat(thermostat), seed, float(t0))
 
         # Per-disk state and bookkeeping, one 64-byte row each in S and E (see
         # _engine/layout.py for the columns).
@@ -348,7 +377,7 @@ class Simulation:
             else:
                 touching = length - rad - pos[:, axis] <= _OVERLAP_TOL * rad
             resting = movable & touching & (vel[:, axis] == 0.0)
-            if resting.any() and (model is None or model.tc == 0.0):
+            if resting.any() and (model is None or model.hold == 0.0):
                 name = "xy"[axis]
                 wall = f"{name}=0" if g[axis] < 0.0 else f"{name}={length}"
                 raise ValueError(
@@ -454,6 +483,17 @@ class Simulation:
         # Saved before the impulses were summed per segment: none summed yet (the total
         # over all segments, acc[A_SEGMENTS], is kept).
         state.setdefault("_wacc", np.zeros((len(state["_wa"]), _layout.N_WACC)))
+        wacc = state["_wacc"]
+        if wacc.shape[1] < _layout.N_WACC:  # (saved before heated segments)
+            state["_wacc"] = np.concatenate(
+                [wacc, np.zeros((len(wacc), _layout.N_WACC - wacc.shape[1]))], axis=1)
+        counts = state["_counts"]
+        if len(counts) < _layout.N_COUNTS:  # (saved before thermostats)
+            state["_counts"] = np.concatenate(
+                [counts, np.zeros(_layout.N_COUNTS - len(counts), np.int64)])
+        model = state["_model"]
+        if model is not None and len(model.wall_kt) < 4 + len(state["_wa"]):
+            model.wall_kt = np.zeros(4 + len(state["_wa"]))  # (saved before heated walls)
         vars(self).update(state)
 
     def _wall_args(self):
@@ -602,6 +642,9 @@ class Simulation:
                 self._time = float(out[0])
                 self._since_reorder += self.counts.events - events_before
             remaining -= int(self._counts[_layout.C_COLLISIONS]) - before
+            if status == _layout.NEED_RANDOM:
+                self._model.refill()
+                continue
             if status != _layout.REACHED_EVENT_LIMIT:
                 # (No reordering here: an error below names disks by internal index.)
                 break
@@ -799,13 +842,88 @@ class Simulation:
         c = self._counts
         coll, wall, cross = (int(c[_layout.C_COLLISIONS]), int(c[_layout.C_WALL]),
                              int(c[_layout.C_CROSSINGS]))
-        return Counts(coll, wall, cross, coll + wall + cross, int(c[_layout.C_STALE]))
+        kicks = int(c[_layout.C_KICKS])
+        return Counts(coll, wall, cross, coll + wall + cross + kicks, int(c[_layout.C_STALE]),
+                      kicks)
 
     def kinetic_energy(self) -> float:
         """Total kinetic energy of the movable disks, ``sum m v^2 / 2``."""
         movable = self._invm > 0
         vel = self._velocities()[movable]
         return float(0.5 * np.dot(self._mass[movable], np.einsum("ij,ij->i", vel, vel)))
+
+    def wall_heat(self) -> np.ndarray:
+        """Kinetic energy the heated walls gave to the disks since creation (negative:
+        they took it), shape (4 + S,): the box walls x=0, x=width, y=0, y=height, then
+        each wall segment; 0 for walls that are not heated."""
+        return np.concatenate([self._acc[_layout.A_HEAT_BOX:_layout.A_HEAT_BOX + 4],
+                               self._wacc[:, _layout.W_HEAT]])
+
+    def thermostat_energy(self) -> float:
+        """Kinetic energy the thermostat's redraws gave to the disks since creation
+        (negative: they took it).  ``total_energy() + dissipated_energy()`` minus this and
+        ``wall_heat().sum()`` stays constant to rounding."""
+        return float(self._acc[_layout.A_THERMOSTAT])
+
+    @property
+    def thermostat(self) -> tuple[float, float] | None:
+        """The Andersen thermostat's ``(kT, rate per disk)``, or ``None``."""
+        return None if self._model is None else self._model.thermostat
+
+    @property
+    def wall_temperatures(self) -> dict:
+        """The heated walls, ``{wall: kT}`` (box walls by name: ``"left"``,
+        ``"right"``, ``"bottom"``, ``"top"``; segments by index); empty if none."""
+        if self._model is None:
+            return {}
+        names = ("left", "right", "bottom", "top")
+        return {(names[k] if k < 4 else k - 4): float(t)
+                for k, t in enumerate(self._model.wall_kt) if t > 0.0}
+
+    def rescale_temperature(self, temperature: float) -> None:
+        """Scale the velocities relative to the centre of mass so that the kinetic
+        temperature (:func:`edmd2d.measurements.kinetic_temperature`) becomes
+        ``temperature``; the total momentum is kept.
+
+        The simple thermostat of compressions and equilibrations, applied at the times
+        the caller chooses (between ``advance`` calls).
+
+        Parameters
+        ----------
+        temperature : float
+            The new ``kT``, > 0.
+
+        Raises
+        ------
+        ValueError
+            For a temperature that is not finite and > 0, or a state without thermal
+            motion to scale (every movable disk at rest relative to the centre of
+            mass); the simulation is then left unchanged.
+
+        Examples
+        --------
+        >>> import edmd2d as ed
+        >>> sim = ed.make_gas(100, 0.3, seed=1).advance(until=1.0)
+        >>> sim.rescale_temperature(2.0)
+        >>> round(ed.kinetic_temperature(sim), 12)
+        2.0
+        """
+        from .measurements import kinetic_temperature
+
+        kt = float(as_float_array("temperature", temperature, ()))
+        if not kt > 0.0:
+            raise ValueError(f"temperature must be > 0, got {kt}")
+        now = kinetic_temperature(self)
+        if not now > 0.0:
+            raise ValueError(f"the kinetic temperature is {now}: no thermal motion to "
+                             "rescale (set velocities instead)")
+        vel = self.velocities
+        movable = np.isfinite(self.masses)
+        mass = self.masses[movable]
+        centre = mass @ vel[movable] / mass.sum()
+        new = vel.copy()
+        new[movable] = centre + (vel[movable] - centre) * math.sqrt(kt / now)
+        self.set_velocities(new)
 
     def dissipated_energy(self) -> float:
         """Kinetic energy lost in inelastic collisions since creation (0 for elastic
@@ -946,6 +1064,9 @@ class Simulation:
         - ``"segment_contacts"``, shape (S,): contact events of each segment (as counted
           in ``counts.wall_collisions``).
 
+        At a heated wall ``J`` is the normal component of the momentum change (the
+        tangential one is in ``"segment_impulses"`` for a segment).
+
         Over all segments, the side and end-point sums add up to ``"segment_impulse"``
         (to rounding)."""
         a = self._acc
@@ -980,10 +1101,11 @@ class Simulation:
         ]
 
 
-def _build_model(species, restitution, wall_restitution, tc, rad, vel, mass):
+def _build_model(species, restitution, wall_restitution, tc, rad, vel, mass,
+                 wall_kt, thermostat=None, seed=None, time=0.0):
     """Validate the physics keywords; ``(species, model)``: the species in user order
-    (int32) and the :class:`~edmd2d.models.Restitution` model, or ``None`` for elastic
-    disks (the engine's default path)."""
+    (int32) and the :class:`~edmd2d.models.Model`, or ``None`` for elastic disks
+    between reflecting walls without a thermostat (the engine's default path)."""
     spec = _models.as_species(species, len(rad))
     scalar = np.ndim(restitution) == 0
     # (One coefficient for every pair: a 1x1 table that every disk reads as species 0.)
@@ -991,9 +1113,66 @@ def _build_model(species, restitution, wall_restitution, tc, rad, vel, mass):
     wall = _models.wall_coefficient(wall_restitution)
     tc = (_models.default_tc(rad, vel, np.isfinite(mass)) if tc is None
           else _models.tc_value(tc))
-    if (table == 1.0).all() and wall == 1.0:
+    heated = bool((wall_kt > 0.0).any())
+    if (table == 1.0).all() and wall == 1.0 and not heated and thermostat is None:
         return spec, None
-    return spec, _models.Restitution(table, wall, tc, np.zeros_like(spec) if scalar else spec)
+    rng = None
+    if heated or thermostat is not None:
+        rng = np.random.default_rng(seed)
+    return spec, _models.Model(table, wall, tc, np.zeros_like(spec) if scalar else spec,
+                               wall_kt, thermostat, rng, time)
+
+
+_BOX_WALL_ALIASES = {"left": 0, "right": 1, "bottom": 2, "top": 3,
+                     **{name: k for k, name in enumerate(_layout.BOX_WALL_NAMES)}}
+
+
+def _wall_temperatures(value, box: Box, n_segments: int):
+    """Validate ``wall_temperatures``; ``kT`` per box wall and segment (4 + S), 0 where
+    not heated."""
+    if value is None:
+        return np.zeros(4 + n_segments)
+    if not isinstance(value, dict):
+        raise TypeError("wall_temperatures must be a dict {wall: kT} (wall: 'left', "
+                        f"'right', 'bottom', 'top' or a segment index), got {value!r}")
+    kt = np.zeros(4 + n_segments)
+    for key, temperature in value.items():
+        label = f"wall_temperatures[{key!r}]"
+        if isinstance(key, str):
+            if key not in _BOX_WALL_ALIASES:
+                raise ValueError(f"{label}: no box wall is called {key!r}; use one of "
+                                 f"{sorted(_BOX_WALL_ALIASES)}")
+            k = _BOX_WALL_ALIASES[key]
+            if box.periodic[k // 2]:
+                raise ValueError(f"{label}: the {'xy'[k // 2]} axis of the box is "
+                                 "periodic, so it has no wall to heat")
+        elif isinstance(key, (int, np.integer)) and not isinstance(key, bool):
+            if not 0 <= key < n_segments:
+                raise ValueError(f"{label}: there are {n_segments} wall segments "
+                                 f"(indices 0 to {n_segments - 1})")
+            k = 4 + int(key)
+        else:
+            raise TypeError(f"{label}: a wall is a box wall's name or a segment index, "
+                            f"got {type(key).__name__}")
+        t = float(as_float_array(label, temperature, ()))
+        if not t > 0.0:
+            raise ValueError(f"{label} must be a temperature kT > 0, got {t}")
+        kt[k] = t
+    return kt
+
+
+def _thermostat(value):
+    """Validate ``thermostat``: ``None`` or ``(kT > 0, rate >= 0)``; ``None`` also for a
+    zero rate."""
+    if value is None:
+        return None
+    arr = as_float_array("thermostat", value, (2,))
+    kt, rate = float(arr[0]), float(arr[1])
+    if not kt > 0.0:
+        raise ValueError(f"thermostat temperature kT must be > 0, got {kt}")
+    if not rate >= 0.0:
+        raise ValueError(f"thermostat rate must be >= 0, got {rate}")
+    return None if rate == 0.0 else (kt, rate)
 
 
 def _as_gravity(gravity):

@@ -114,6 +114,7 @@ class Kind(IntEnum):
     SEGMENT = 2
     BOX = 3
     CROSS = 4
+    KICK = 5  # a thermostat's velocity redraw (never a kept candidate)
 
 
 # (Plain ints for the compiled code.)
@@ -122,6 +123,7 @@ DISK = int(Kind.DISK)
 SEGMENT = int(Kind.SEGMENT)
 BOX = int(Kind.BOX)
 CROSS = int(Kind.CROSS)
+KICK = int(Kind.KICK)
 KIND_MASK = 15  # low bits of E[:, KIND]; the bits above hold a crossing's direction
 
 
@@ -178,33 +180,40 @@ C_COLLISIONS = 0
 C_WALL = 1
 C_CROSSINGS = 2
 C_STALE = 3
-N_COUNTS = 4
+C_KICKS = 4  # thermostat velocity redraws
+N_COUNTS = 5
 
 # Accumulators (acc[...]): sum of J*|r_ij| over disk collisions (collision virial), the
 # impulse delivered to each box wall (x=0, x=W, y=0, y=H) and to all wall segments, the
-# diagonal of the virial tensor, sum J |r_ij| n_x^2 and sum J |r_ij| n_y^2, and the
-# kinetic energy lost in inelastic collisions.
+# diagonal of the virial tensor, sum J |r_ij| n_x^2 and sum J |r_ij| n_y^2, the
+# kinetic energy lost in inelastic collisions, the kinetic energy each box wall gave
+# to the disks (heated walls: x=0, x=W, y=0, y=H), and the kinetic energy the
+# thermostat's redraws gave.
 A_VIRIAL = 0
 A_BOX = 1  # 1..4
 A_SEGMENTS = 5
 A_VIRIAL_XX = 6
 A_VIRIAL_YY = 7
 A_DISSIPATED = 8
-N_ACC = 9
+A_HEAT_BOX = 9  # 9..12
+A_THERMOSTAT = 13
+N_ACC = 14
 
 # Per-segment tallies (wacc[k, ...], one row per wall segment k, beside acc[A_SEGMENTS],
 # their total): the impulse vector the segment received, the sum of -J n over its
 # contacts (n the unit normal from the segment to the disk, J the impulse magnitude);
 # J summed over the contacts on each side (left: the side that (-(by - ay), bx - ax)
 # points to, on the left going from start a to end b) and at the two end points; and
-# the number of contact events (counted like counts[C_WALL], impulse or not).
+# the number of contact events (counted like counts[C_WALL], impulse or not); and the
+# kinetic energy the segment gave to the disks (a heated segment).
 W_FX = 0
 W_FY = 1
 W_LEFT = 2
 W_RIGHT = 3
 W_ENDS = 4
 W_CONTACTS = 5
-N_WACC = 6
+W_HEAT = 6
+N_WACC = 7
 
 # Modes of run(): process events, or predict every disk afresh and rebuild the queue
 RUN_EVENTS = 0
@@ -215,6 +224,7 @@ REACHED_TIME = 0
 REACHED_COLLISIONS = 1
 REACHED_EVENT_LIMIT = 2
 NO_EVENTS = 3
+NEED_RANDOM = 4  # the random numbers left are too few for the next event: refill
 ERR_IMMOVABLE_PAIR = 10
 ERR_IMMOVABLE_WALL = 11
 ERR_STALLED = 12  # inelastic collapse: unboundedly many collisions in no time

@@ -61,6 +61,7 @@ from .layout import (
     BOX,
     C_COLLISIONS,
     C_CROSSINGS,
+    C_KICKS,
     C_STALE,
     C_WALL,
     CELL,
@@ -69,7 +70,9 @@ from .layout import (
     ERR_IMMOVABLE_PAIR,
     ERR_IMMOVABLE_WALL,
     ERR_STALLED,
+    KICK,
     KIND,
+    NEED_RANDOM,
     NO_EVENTS,
     NONE,
     PARTNER,
@@ -119,9 +122,15 @@ def run(t_end, max_collisions, max_events, mode, out, info,
     offending disks (or disk and wall: ``-1 - side`` for a box wall) are written to
     ``info`` and the state is left as it was just before that event.
 
-    If ``log_t`` has room, every disk-disk, segment and box-wall event is recorded as
-    ``log_t[k]``, ``log_e[k] = (kind, i, partner)`` with ``log_n[0]`` counting them all;
-    disks are recorded by their user index ``order[i]``.
+    A model's thermostat redraws (``KICK``) are events of their own, at their times:
+    one due before the next scheduled event is processed first.  With a model that
+    draws random numbers the loop returns ``NEED_RANDOM`` before an event when its
+    buffer runs low (nothing of that event done yet): refill it and call again.
+
+    If ``log_t`` has room, every disk-disk, segment, box-wall and thermostat event is
+    recorded as ``log_t[k]``, ``log_e[k] = (kind, i, partner)`` (partner -1 for a
+    redraw) with ``log_n[0]`` counting them all; disks are recorded by their user index
+    ``order[i]``.
     """
     S, E, stamp, nxt, prv, qt, tc, invm, image, order = particles
     gi, gf, head = grid
@@ -150,11 +159,40 @@ def run(t_end, max_collisions, max_events, mode, out, info,
     opened = np.int64(-1)  # the calendar bucket the lookahead last ran for (int64: one
     # compiled lookahead, not a second for the literal)
     qs[queue.FIRST] = -1  # (left by an earlier call: its list may have changed since)
+    kicked = False
+    t_kick = INF
     while True:
         if mode == PREDICT_ALL:
             npred = S.shape[0]
         else:
             i = queue.top(qt, E, hv, qhead, qs, qf)
+            if model is not None:
+                if response.needs_random(model):
+                    status = NEED_RANDOM
+                    break
+                # A thermostat redraw due before the next event (or at its time) comes
+                # first.
+                t_kick = response.next_kick(model)
+                kicked = t_kick <= t_end and (i < 0 or t_kick <= qt[i])
+        if mode == PREDICT_ALL:
+            pass
+        elif kicked:
+            if n_ev >= max_events:
+                status = REACHED_EVENT_LIMIT
+                break
+            t = t_kick
+            if model is not None:  # (always, for a redraw; the test spares typing it)
+                i = response.kick(S.shape[0], model)
+            if invm[i] == 0.0:
+                continue  # (an immovable disk keeps its velocity; the next is drawn)
+            kind = KICK
+            partner = -1
+            aux = -1
+            redo0 = -1
+            redo1 = -1
+            direction = -1
+            stale = False
+        else:
             if i < 0:
                 status = NO_EVENTS
                 break
@@ -196,6 +234,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
             direction = -1  # of a cell crossing of i, for a partial prediction
             stale = False
 
+        if mode != PREDICT_ALL:
             if kind == DISK:
                 j = partner
                 if stamp[j] != E[i, PSTAMP]:
@@ -240,6 +279,13 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1
+            elif kind == KICK:
+                if model is not None:  # (always: redraws come from a model)
+                    drift(i, t, S, flight)
+                    response.redraw(i, S, invm, acc, model, flight)
+                stamp[i] += 1
+                redo0 = i
+                counts[C_KICKS] += 1
             else:  # CROSS
                 drift(i, t, S, flight)
                 c = E[i, CELL]

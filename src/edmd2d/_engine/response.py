@@ -8,8 +8,9 @@ elastic (energy conserved), ``e < 1`` loses ``(1 - e^2) vn^2 / (2 (w_i + w_j))``
 kinetic energy.  A wall is a partner with ``w = 0``.
 
 The model argument chooses the physics: ``None`` for elastic disks (the default, which
-compiles to the plain elastic formulas), or the restitution model's tuple
-``(table, species, wall, tc, t_last, streak)`` (see ``edmd2d.models.Restitution``):
+compiles to the plain elastic formulas), or the model's tuple ``(table, species, wall,
+tc, t_last, streak, hold, wall_kt, thermo, buffer, cursor)`` (see
+``edmd2d.models.Model``):
 
 - ``table[a, b]``: the coefficient for a pair of species ``a, b``; ``species[i]`` per
   disk (rows in the engine's internal order); ``wall``: the coefficient against box
@@ -20,7 +21,18 @@ compiles to the plain elastic formulas), or the restitution model's tuple
 - ``streak[i]``: how many collisions in a row of disk ``i`` each came at the same
   time as the one before it, to within a relative ``INSTANT``: an inelastic
   collapse that the TC model does not stop (``tc`` = 0) makes a streak grow without
-  end, and :func:`stalls` stops the run at ``STALL_COLLISIONS``.
+  end, and :func:`stalls` stops the run at ``STALL_COLLISIONS``;
+- ``hold``: the ``tc`` with which box walls hold disks at rest under gravity
+  (:func:`_rest`; 0 for elastic disks, which never come to rest);
+- ``wall_kt[k]``: the temperature ``kT`` of box wall ``k`` (0-3) or of segment
+  ``k - 4``; a heated wall (``kT > 0``) sends a disk back with a velocity drawn afresh
+  (:func:`_heat`) instead of reflecting it;
+- ``thermo = (kT, rate, t_next)``: the Andersen thermostat, redraws of a random disk's
+  velocity (:func:`kick`, :func:`redraw`) at the events of a Poisson process of
+  ``rate`` (over all rows), the next at ``t_next``;
+- ``buffer``, ``cursor``: uniform random numbers in ``[0, 1)`` from the model's
+  generator and the next one to use; the loop returns for a refill when fewer than
+  ``RANDOM_PER_EVENT`` are left.
 """
 
 from __future__ import annotations
@@ -31,7 +43,9 @@ from .._jit import njit
 from .layout import (
     A_BOX,
     A_DISSIPATED,
+    A_HEAT_BOX,
     A_SEGMENTS,
+    A_THERMOSTAT,
     A_VIRIAL,
     A_VIRIAL_XX,
     A_VIRIAL_YY,
@@ -42,6 +56,7 @@ from .layout import (
     W_ENDS,
     W_FX,
     W_FY,
+    W_HEAT,
     W_LEFT,
     W_RIGHT,
     X,
@@ -57,6 +72,75 @@ INSTANT = 8.0 * 2.0 ** -52
 # Simultaneous collisions in a row of one disk at which the run stops: a finite
 # number of disks in elastic contact resolve in far fewer.
 STALL_COLLISIONS = 10_000
+# The most random numbers one event uses: a thermostat redraw takes one for the disk,
+# one for the time of the next redraw and two for each of two Gaussians.
+RANDOM_PER_EVENT = 6
+
+
+@njit(inline="always")
+def _uniform(model):
+    """The next uniform random number ``u`` in ``[0, 1)`` of the model's buffer (so
+    ``1 - u`` is never 0, and its logarithm is finite)."""
+    buffer = model[9]
+    cursor = model[10]
+    u = buffer[cursor[0]]
+    cursor[0] += 1
+    return u
+
+
+@njit(inline="always")
+def _thermal(model):
+    """``sqrt(-2 ln(1 - u))``: a Rayleigh deviate of unit scale (one uniform)."""
+    return math.sqrt(-2.0 * math.log(1.0 - _uniform(model)))
+
+
+@njit(inline="always")
+def _gaussian(model):
+    """A standard normal deviate (Box-Muller, the cosine branch: two uniforms)."""
+    r = _thermal(model)
+    return r * math.cos(2.0 * math.pi * _uniform(model))
+
+
+@njit
+def needs_random(model):
+    """Whether the buffer of random numbers is too low for the next event."""
+    if model is None:
+        return False
+    buffer = model[9]
+    return buffer.shape[0] > 0 and model[10][0] + RANDOM_PER_EVENT > buffer.shape[0]
+
+
+@njit
+def next_kick(model):
+    """The time of the thermostat's next redraw (``inf`` without a thermostat)."""
+    if model is None:
+        return math.inf
+    return model[8][2]
+
+
+@njit(inline="always")
+def kick(n, model):
+    """A thermostat event: the row whose velocity is redrawn (uniform over the ``n``
+    rows), and the time of the next event drawn (an exponential waiting time)."""
+    thermo = model[8]
+    k = min(int(_uniform(model) * n), n - 1)
+    thermo[2] -= math.log(1.0 - _uniform(model)) / thermo[1]
+    return k
+
+
+@njit(inline="always")
+def redraw(k, S, invm, acc, model, flight):
+    """Draw the velocity of movable disk ``k`` from the Maxwell-Boltzmann distribution
+    at the thermostat's ``kT`` (each component Gaussian with variance ``kT / m``), and
+    add the kinetic energy gained to the thermostat's tally.  Under gravity it leaves
+    any wall it rested on."""
+    s = math.sqrt(model[8][0] * invm[k])
+    before = S[k, VX] * S[k, VX] + S[k, VY] * S[k, VY]
+    S[k, VX] = s * _gaussian(model)
+    S[k, VY] = s * _gaussian(model)
+    acc[A_THERMOSTAT] += 0.5 * (S[k, VX] * S[k, VX] + S[k, VY] * S[k, VY] - before) / invm[k]
+    if flight is not None:
+        flight[3][k] = 0
 
 
 @njit
@@ -66,7 +150,10 @@ def _pair_impulse(i, j, t, dvn, wi, wj, acc, model):
         # Momentum J n moves from j to i; with the reduced mass this reverses the
         # normal relative velocity (elastic).
         return -2.0 * dvn / (wi + wj)
-    table, species, _, tc, t_last, _ = model
+    table = model[0]
+    species = model[1]
+    tc = model[3]
+    t_last = model[4]
     e = table[species[i], species[j]]
     if t - t_last[i] < tc or t - t_last[j] < tc:
         e = 1.0  # the TC model: a disk still "in contact" collides elastically
@@ -79,7 +166,9 @@ def _wall_factor(i, t, vn, wi, acc, model):
     """``1 + e`` for disk ``i`` approaching a wall at normal velocity ``vn < 0``."""
     if model is None:
         return 2.0
-    _, _, e, tc, t_last, _ = model
+    e = model[2]
+    tc = model[3]
+    t_last = model[4]
     if t - t_last[i] < tc:
         e = 1.0
     acc[A_DISSIPATED] += 0.5 * (1.0 - e * e) * vn * vn / wi
@@ -171,7 +260,8 @@ def _rest(i, side, S, invm, acc, model, flight):
     bounces would go on shrinking (or, elastic under the TC rule, never end), so the
     wall holds it instead.  The normal velocity left (its kinetic energy counted as
     dissipated) is removed, and the disk slides along the wall from now on (see
-    :mod:`.flight`).  Only for an inelastic model with ``tc > 0``."""
+    :mod:`.flight`).  Only for an inelastic model
+    with ``tc > 0`` (``hold``)."""
     if model is None or flight is None:
         return
     axis = side >> 1
@@ -180,10 +270,37 @@ def _rest(i, side, S, invm, acc, model, flight):
     if g_n >= 0.0:
         return
     vn = S[i, VX + axis] * inward
-    if 2.0 * vn < -g_n * model[3]:
+    if 2.0 * vn < -g_n * model[6]:
         acc[A_DISSIPATED] += 0.5 * vn * vn / invm[i]
         S[i, VX + axis] = 0.0
         flight[3][i] |= 1 << side
+
+
+@njit(inline="always")
+def _heat(i, k, nx, ny, S, invm, acc, wacc, kind, partner, model):
+    """Disk ``i`` leaves heated wall ``k`` (box wall 0-3 or segment ``k - 4``; unit
+    normal ``n`` into the gas) with a velocity drawn from the wall's temperature: the
+    normal speed from the flux-weighted distribution ``(m vn / kT) exp(-m vn^2 / 2kT)``
+    (``sqrt(-2 ln u)`` thermal speeds), the tangential component Gaussian with variance
+    ``kT / m``.  The kinetic energy gained is added to the wall's heat tally.  Returns
+    the normal impulse ``J = m (vn' - vn)`` and the momentum ``m (v' - v)`` the disk
+    received."""
+    s = math.sqrt(model[7][k] * invm[i])
+    vx0 = S[i, VX]
+    vy0 = S[i, VY]
+    vn_old = vx0 * nx + vy0 * ny
+    vn = s * _thermal(model)
+    vt = s * _gaussian(model)
+    S[i, VX] = vn * nx - vt * ny
+    S[i, VY] = vn * ny + vt * nx
+    gained = 0.5 * (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]
+                    - vx0 * vx0 - vy0 * vy0) / invm[i]
+    if kind == BOX:
+        acc[A_HEAT_BOX + k] += gained
+    else:
+        wacc[partner, W_HEAT] += gained
+    return ((vn - vn_old) / invm[i], (S[i, VX] - vx0) / invm[i],
+            (S[i, VY] - vy0) / invm[i])
 
 
 @njit(inline="always")
@@ -234,22 +351,33 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model
             col = W_ENDS
         slot = A_SEGMENTS
         wacc[partner, W_CONTACTS] += 1.0
-    # Mirror the normal velocity (scaled by e), if approaching.
+    # Mirror the normal velocity (scaled by e), if approaching; or, at a heated wall,
+    # send the disk back with a velocity drawn afresh.
     vn = S[i, VX] * nx + S[i, VY] * ny
+    heated = False
     if vn < 0.0:
-        f = _wall_factor(i, t, vn, invm[i], acc, model)
-        S[i, VX] -= f * vn * nx
-        S[i, VY] -= f * vn * ny
-        impulse = -f * vn / invm[i]
+        k = aux if kind == BOX else 4 + partner
+        if model is not None:
+            heated = model[7][k] > 0.0
+        if heated:
+            impulse, jx, jy = _heat(i, k, nx, ny, S, invm, acc, wacc, kind, partner, model)
+        else:
+            f = _wall_factor(i, t, vn, invm[i], acc, model)
+            S[i, VX] -= f * vn * nx
+            S[i, VY] -= f * vn * ny
+            impulse = -f * vn / invm[i]
+            jx = impulse * nx
+            jy = impulse * ny
         acc[slot] += impulse
         if kind != BOX:
-            # The disk receives J n, the segment -J n.
-            wacc[partner, W_FX] -= impulse * nx
-            wacc[partner, W_FY] -= impulse * ny
+            # The disk receives the momentum (jx, jy) (J n if reflected), the segment
+            # its opposite.
+            wacc[partner, W_FX] -= jx
+            wacc[partner, W_FY] -= jy
             wacc[partner, col] += impulse
     _note_collision(i, t, invm, model)
     if flight is not None:
-        if kind == BOX:
+        if kind == BOX and not heated:
             _rest(i, aux, S, invm, acc, model, flight)
         else:
             _release(i, S, flight[3])

@@ -215,9 +215,10 @@ def degrees_of_freedom(sim) -> tuple[int, tuple[bool, bool]]:
 
     A Cartesian component of the total momentum is conserved when its axis is periodic
     and nothing external can push along it: no wall segments (a segment's end points
-    push in every direction) and no immovable disks (``mass = inf``).  Each conserved
-    component removes one degree of freedom: ``f = 2N - 2`` in a fully periodic box of
-    free disks, ``2N - 1`` in a channel periodic along one axis, ``2N`` in a closed box.
+    push in every direction), no immovable disks (``mass = inf``), no thermostat and
+    no gravity along it.  Each conserved component removes one degree of freedom:
+    ``f = 2N - 2`` in a fully periodic box of free disks, ``2N - 1`` in a channel
+    periodic along one axis, ``2N`` in a closed box.
 
     Returns
     -------
@@ -235,8 +236,10 @@ def degrees_of_freedom(sim) -> tuple[int, tuple[bool, bool]]:
     (19, (True, False))
     """
     movable = np.isfinite(sim.masses)
-    free = bool(movable.all()) and not sim.walls
-    conserved = (bool(sim.box.periodic[0]) and free, bool(sim.box.periodic[1]) and free)
+    # (A thermostat's redraws change the momentum too; gravity pushes along its axes.)
+    free = bool(movable.all()) and not sim.walls and sim.thermostat is None
+    conserved = tuple(bool(sim.box.periodic[a] and free and sim.gravity[a] == 0.0)
+                      for a in range(2))
     return 2 * int(movable.sum()) - int(sum(conserved)), conserved
 
 

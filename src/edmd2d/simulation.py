@@ -896,9 +896,10 @@ class Simulation:
         Raises
         ------
         ValueError
-            For a temperature that is not finite and > 0, or a state without thermal
-            motion to scale (every movable disk at rest relative to the centre of
-            mass); the simulation is then left unchanged.
+            For a temperature that is not finite and > 0, or a state that no scaling
+            brings there (every movable disk at rest relative to the centre of mass,
+            or a centre-of-mass motion along an axis without momentum conservation
+            that alone is hotter); the simulation is then left unchanged.
 
         Examples
         --------
@@ -908,21 +909,29 @@ class Simulation:
         >>> round(ed.kinetic_temperature(sim), 12)
         2.0
         """
-        from .measurements import kinetic_temperature
+        from .measurements import degrees_of_freedom
 
         kt = float(as_float_array("temperature", temperature, ()))
         if not kt > 0.0:
             raise ValueError(f"temperature must be > 0, got {kt}")
-        now = kinetic_temperature(self)
-        if not now > 0.0:
-            raise ValueError(f"the kinetic temperature is {now}: no thermal motion to "
-                             "rescale (set velocities instead)")
+        dof, conserved = degrees_of_freedom(self)
         vel = self.velocities
         movable = np.isfinite(self.masses)
         mass = self.masses[movable]
         centre = mass @ vel[movable] / mass.sum()
+        thermal = vel[movable] - centre
+        twice_thermal = float(mass @ np.einsum("ij,ij->i", thermal, thermal))
+        # kinetic_temperature counts the centre-of-mass motion along the axes where
+        # momentum is not conserved as heat: scaling the velocities about the centre
+        # of mass by s gives kT = (M c_free^2 + s^2 sum m |v - c|^2) / f.
+        free = mass.sum() * sum(float(centre[a]) ** 2 for a in range(2) if not conserved[a])
+        if not (twice_thermal > 0.0 and dof > 0 and kt * dof > free):
+            raise ValueError(
+                f"no velocities about the centre of mass give kT={kt}: the thermal "
+                "motion is zero, or the centre of mass alone carries more (set the "
+                "velocities instead)")
         new = vel.copy()
-        new[movable] = centre + (vel[movable] - centre) * math.sqrt(kt / now)
+        new[movable] = centre + thermal * math.sqrt((kt * dof - free) / twice_thermal)
         self.set_velocities(new)
 
     def dissipated_energy(self) -> float:

@@ -247,7 +247,9 @@ def test_virial_theorem_with_the_walls_of_a_polygon_is_exact():
         pair = acc1["virial"] - acc0["virial"]
         rhs = 2 * kinetic * (sim.time - t0) + pair + wall_term
         assert g1 - g0 == pytest.approx(rhs, abs=1e-9 * pair)
-        assert abs(g1 - g0) < 0.01 * pair  # (the boundary term is small but not zero)
+        # (G is stationary: its change over the window is a fluctuation of order
+        # sqrt(N) |r| m v, about 1 % of the pair term here, not a systematic part.)
+        assert abs(g1 - g0) < 0.05 * pair
 
 
 def test_pickles_from_before_the_per_segment_tallies_load():

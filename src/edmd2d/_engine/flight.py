@@ -27,7 +27,7 @@ from .._jit import njit
 from .layout import VX, VY, T, X, Y
 
 
-@njit(inline="always")
+@njit
 def acceleration(i, flight):
     """The acceleration of disk ``i``: ``g`` if it is movable, less the components
     that the walls it rests on hold; 0 for an immovable disk."""

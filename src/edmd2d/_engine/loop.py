@@ -159,13 +159,14 @@ def run(t_end, max_collisions, max_events, mode, out, info,
     opened = np.int64(-1)  # the calendar bucket the lookahead last ran for (int64: one
     # compiled lookahead, not a second for the literal)
     qs[queue.FIRST] = -1  # (left by an earlier call: its list may have changed since)
-    kicked = False
-    t_kick = INF
     while True:
         if mode == PREDICT_ALL:
             npred = S.shape[0]
         else:
             i = queue.top(qt, E, hv, qhead, qs, qf)
+            # (Every test of the thermostat starts with `model is not None`: numba prunes
+            # it all from the elastic loop, which compiles as if it were not there.)
+            kicked = False
             if model is not None:
                 if response.needs_random(model):
                     status = NEED_RANDOM
@@ -173,68 +174,61 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                 # A thermostat redraw due before the next event (or at its time) comes
                 # first.
                 t_kick = response.next_kick(model)
-                kicked = t_kick <= t_end and (i < 0 or t_kick <= qt[i])
-        if mode == PREDICT_ALL:
-            pass
-        elif kicked:
-            if n_ev >= max_events:
-                status = REACHED_EVENT_LIMIT
-                break
-            t = t_kick
-            if model is not None:  # (always, for a redraw; the test spares typing it)
-                i = response.kick(S.shape[0], model)
-            if invm[i] == 0.0:
-                continue  # (an immovable disk keeps its velocity; the next is drawn)
-            kind = KICK
-            partner = -1
-            aux = -1
-            redo0 = -1
-            redo1 = -1
-            direction = -1
-            stale = False
-        else:
-            if i < 0:
-                status = NO_EVENTS
-                break
-            if qs[queue.LOOKAHEAD] != 0:
-                if qs[queue.CUR] != opened:
-                    lookahead.lookahead(opened, qs[queue.CUR], qs[queue.FIRST], S, E, qt,
-                                        tc, gi, head, qhead, qs[queue.MASK])
-                    opened = qs[queue.CUR]
-                else:
-                    lookahead.stage_heap(S, E, qt, tc, gi, head, hv, qs[queue.NHEAP])
-            t = qt[i]
-            # The next events are most likely those of the heap root's children: start
-            # loading their rows now (at large N each is a cache miss otherwise).
-            if qs[queue.NHEAP] > 1:
-                k = hv[1]
-                prefetch(S, k)
-                prefetch(E, k)
-                if qs[queue.NHEAP] > 2:
-                    k = hv[2]
+                if t_kick <= t_end and (i < 0 or t_kick <= qt[i]):
+                    if n_ev >= max_events:
+                        status = REACHED_EVENT_LIMIT
+                        break
+                    kicked = True
+                    t = t_kick
+                    i = response.kick(S.shape[0], model)
+                    if invm[i] == 0.0:
+                        continue  # (an immovable disk keeps its velocity)
+            if model is not None and kicked:
+                kind = KICK
+                partner = -1
+                aux = -1
+            else:
+                if i < 0:
+                    status = NO_EVENTS
+                    break
+                if qs[queue.LOOKAHEAD] != 0:
+                    if qs[queue.CUR] != opened:
+                        lookahead.lookahead(opened, qs[queue.CUR], qs[queue.FIRST], S, E, qt,
+                                            tc, gi, head, qhead, qs[queue.MASK])
+                        opened = qs[queue.CUR]
+                    else:
+                        lookahead.stage_heap(S, E, qt, tc, gi, head, hv, qs[queue.NHEAP])
+                t = qt[i]
+                # The next events are most likely those of the heap root's children: start
+                # loading their rows now (at large N each is a cache miss otherwise).
+                if qs[queue.NHEAP] > 1:
+                    k = hv[1]
                     prefetch(S, k)
                     prefetch(E, k)
-            if t > t_end:
-                status = REACHED_TIME
-                break
-            if n_ev >= max_events:
-                status = REACHED_EVENT_LIMIT
-                break
-            if t < tc[i]:
-                kind = CROSS
-                partner = -1
-                aux = direction_of(E[i, KIND])
-            else:
-                kind = kind_of(E[i, KIND])
-                partner = E[i, PARTNER]
-                aux = E[i, AUX]
+                    if qs[queue.NHEAP] > 2:
+                        k = hv[2]
+                        prefetch(S, k)
+                        prefetch(E, k)
+                if t > t_end:
+                    status = REACHED_TIME
+                    break
+                if n_ev >= max_events:
+                    status = REACHED_EVENT_LIMIT
+                    break
+                if t < tc[i]:
+                    kind = CROSS
+                    partner = -1
+                    aux = direction_of(E[i, KIND])
+                else:
+                    kind = kind_of(E[i, KIND])
+                    partner = E[i, PARTNER]
+                    aux = E[i, AUX]
             # Disks whose events must be predicted afresh once this event is handled.
             redo0 = -1
             redo1 = -1
             direction = -1  # of a cell crossing of i, for a partial prediction
             stale = False
 
-        if mode != PREDICT_ALL:
             if kind == DISK:
                 j = partner
                 if stamp[j] != E[i, PSTAMP]:
@@ -279,10 +273,9 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1
-            elif kind == KICK:
-                if model is not None:  # (always: redraws come from a model)
-                    drift(i, t, S, flight)
-                    response.redraw(i, S, invm, acc, model, flight)
+            elif model is not None and kind == KICK:
+                drift(i, t, S, flight)
+                response.redraw(i, S, invm, acc, model, flight)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_KICKS] += 1

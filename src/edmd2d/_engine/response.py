@@ -77,7 +77,7 @@ STALL_COLLISIONS = 10_000
 RANDOM_PER_EVENT = 6
 
 
-@njit(inline="always")
+@njit
 def _uniform(model):
     """The next uniform random number ``u`` in ``[0, 1)`` of the model's buffer (so
     ``1 - u`` is never 0, and its logarithm is finite)."""
@@ -88,13 +88,13 @@ def _uniform(model):
     return u
 
 
-@njit(inline="always")
+@njit
 def _thermal(model):
     """``sqrt(-2 ln(1 - u))``: a Rayleigh deviate of unit scale (one uniform)."""
     return math.sqrt(-2.0 * math.log(1.0 - _uniform(model)))
 
 
-@njit(inline="always")
+@njit
 def _gaussian(model):
     """A standard normal deviate (Box-Muller, the cosine branch: two uniforms)."""
     r = _thermal(model)
@@ -118,7 +118,7 @@ def next_kick(model):
     return model[8][2]
 
 
-@njit(inline="always")
+@njit
 def kick(n, model):
     """A thermostat event: the row whose velocity is redrawn (uniform over the ``n``
     rows), and the time of the next event drawn (an exponential waiting time)."""
@@ -128,7 +128,7 @@ def kick(n, model):
     return k
 
 
-@njit(inline="always")
+@njit
 def redraw(k, S, invm, acc, model, flight):
     """Draw the velocity of movable disk ``k`` from the Maxwell-Boltzmann distribution
     at the thermostat's ``kT`` (each component Gaussian with variance ``kT / m``), and
@@ -247,7 +247,7 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight):
         _release(j, S, flight[3])
 
 
-@njit(inline="always")
+@njit
 def _release(i, S, support):
     """After a collision, disk ``i`` stays held only by the walls along whose normal it
     still does not move (see :func:`_rest`)."""
@@ -260,7 +260,7 @@ def _release(i, S, support):
         support[i] = rest
 
 
-@njit(inline="always")
+@njit
 def _rest(i, side, S, invm, acc, model, flight):
     """Put disk ``i``, just reflected by box wall ``side``, to rest on it if gravity
     presses it into that wall and it would be back within the TC model's ``tc``: its
@@ -283,7 +283,27 @@ def _rest(i, side, S, invm, acc, model, flight):
         flight[3][i] |= 1 << side
 
 
-@njit(inline="always")
+@njit
+def _heated_contact(i, kind, partner, aux, nx, ny, nn, vn, slot, col, S, invm, acc, wacc,
+                    model):
+    """The contact of disk ``i`` with a heated wall (normal ``n``, not normalised,
+    ``nn = n.n``; ``vn = v.n``): if approaching, the disk leaves with a velocity drawn
+    from the wall (:func:`_heat`), and the impulse goes into the wall's tallies as at
+    any wall."""
+    if vn >= 0.0:
+        return
+    ln = math.sqrt(nn)
+    k = aux if kind == BOX else 4 + partner
+    impulse, jx, jy = _heat(i, k, nx / ln, ny / ln, S, invm, acc, wacc, kind, partner,
+                            model)
+    acc[slot] += impulse
+    if kind != BOX:
+        wacc[partner, W_FX] -= jx
+        wacc[partner, W_FY] -= jy
+        wacc[partner, col] += impulse
+
+
+@njit
 def _heat(i, k, nx, ny, S, invm, acc, wacc, kind, partner, model):
     """Disk ``i`` leaves heated wall ``k`` (box wall 0-3 or segment ``k - 4``; unit
     normal ``n`` into the gas) with a velocity drawn from the wall's temperature: the
@@ -360,28 +380,24 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model
     # send the disk back with a velocity drawn afresh.
     vn = S[i, VX] * nx + S[i, VY] * ny  # (|n| times the normal velocity)
     heated = False
-    if vn < 0.0:
-        k = aux if kind == BOX else 4 + partner
-        if model is not None:
-            heated = model[7][k] > 0.0
-        ln = 1.0 if kind == BOX else math.sqrt(nn)
-        if heated:
-            impulse, jx, jy = _heat(i, k, nx / ln, ny / ln, S, invm, acc, wacc, kind,
-                                    partner, model)
+    if model is not None:
+        heated = model[7][aux if kind == BOX else 4 + partner] > 0.0
+    if model is not None and heated:
+        _heated_contact(i, kind, partner, aux, nx, ny, nn, vn, slot, col, S, invm, acc,
+                        wacc, model)
+    elif vn < 0.0:
+        f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, model)
+        q = -f * vn / nn  # the velocity change is q n
+        S[i, VX] += q * nx
+        S[i, VY] += q * ny
+        if kind == BOX:
+            acc[slot] += q / invm[i]  # (|n| = 1)
         else:
-            f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, model)
-            q = -f * vn / nn  # the velocity change is q n
-            S[i, VX] += q * nx
-            S[i, VY] += q * ny
-            impulse = q * ln / invm[i]
-            jx = q * nx / invm[i]
-            jy = q * ny / invm[i]
-        acc[slot] += impulse
-        if kind != BOX:
-            # The disk receives the momentum (jx, jy) (J n if reflected), the segment
-            # its opposite.
-            wacc[partner, W_FX] -= jx
-            wacc[partner, W_FY] -= jy
+            impulse = q * math.sqrt(nn) / invm[i]
+            acc[slot] += impulse
+            # The disk receives the momentum q n / w, the segment its opposite.
+            wacc[partner, W_FX] -= q * nx / invm[i]
+            wacc[partner, W_FY] -= q * ny / invm[i]
             wacc[partner, col] += impulse
     _note_collision(i, t, invm, model)
     if flight is not None:

@@ -52,6 +52,19 @@ from .predict import (
 )
 
 
+@njit
+def _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, flight, best):
+    """Under gravity: the contact time of a disk (separation ``d``, velocity ``v``,
+    acceleration ``g_i`` at time ``t``) with disk ``j``.  (Not inlined into the scan:
+    the straight-line loop would otherwise carry this code through numba's inlining
+    before pruning it, which lengthened its compilation.)"""
+    vxj, vyj = velocity_at(j, t, S, flight)
+    gxj, gyj = acceleration(j, flight)
+    if gxi == gxj and gyi == gyj:
+        return pair_time(dx, dy, vx - vxj, vy - vyj, r + S[j, R])
+    return point_time(dx, dy, vx - vxj, vy - vyj, gxi - gxj, gyi - gyj, r + S[j, R], best)
+
+
 @njit(inline="always")
 def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
                 S, stamp, gi, gf, head, nxt, best, partner, aux, pst, flight):
@@ -82,13 +95,8 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
                     if flight is None:
                         dtc = pair_time(dx, dy, vx - S[j, VX], vy - S[j, VY], r + S[j, R])
                     else:
-                        vxj, vyj = velocity_at(j, t, S, flight)
-                        gxj, gyj = acceleration(j, flight)
-                        if gxi == gxj and gyi == gyj:
-                            dtc = pair_time(dx, dy, vx - vxj, vy - vyj, r + S[j, R])
-                        else:
-                            dtc = point_time(dx, dy, vx - vxj, vy - vyj, gxi - gxj,
-                                             gyi - gyj, r + S[j, R], best)
+                        dtc = _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, flight,
+                                               best)
                     if dtc < best:
                         best = dtc
                         partner = j
@@ -159,8 +167,14 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
     """
     partial = direction >= 0 and not (
         kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
-    vx, vy = velocity_at(i, t, S, flight)
-    gx, gy = acceleration(i, flight)
+    if flight is None:
+        vx = S[i, VX]
+        vy = S[i, VY]
+        gx = 0.0
+        gy = 0.0
+    else:
+        vx, vy = velocity_at(i, t, S, flight)
+        gx, gy = acceleration(i, flight)
     x, y = position_at(i, t, S, flight)
     r = S[i, R]
     c = E[i, CELL]

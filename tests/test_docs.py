@@ -10,6 +10,8 @@ import re
 import numpy as np
 import pytest
 
+import edmd2d as ed
+
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 MODULES = ["edmd2d", "edmd2d.geometry", "edmd2d.simulation", "edmd2d.builders",
            "edmd2d.reference", "edmd2d.viz", "edmd2d.analysis", "edmd2d.measurements",
@@ -56,6 +58,21 @@ def test_readme_inelastic_example_runs(capsys):
     law = np.exp(-(1 - 0.9 ** 2) * c.collisions_per_disk[-1] / 2)
     assert c.temperature[-1] / c.temperature[0] == pytest.approx(law, rel=0.04)
     assert c.collisions_per_disk[-1] > 10 and "exp law" in capsys.readouterr().out
+
+
+def test_readme_gravity_example_runs(capsys):
+    text = (ROOT / "README.md").read_text()
+    block = next(b for b in re.findall(r"```python\n(.*?)```", text, re.S)
+                 if "wall_temperatures" in b)
+    namespace: dict = {}
+    exec(compile(block, "README.md", "exec"), namespace)
+    sim, hot = namespace["sim"], namespace["hot"]
+    # The README says the total energy stays as at the start, to ~1e-12.
+    start = ed.make_gas(400, 0.05, periodic=(True, False), seed=1, gravity=(0.0, -0.02))
+    assert sim.total_energy() == pytest.approx(start.total_energy(), rel=1e-12)
+    floor, ceiling = hot.wall_heat()[2:]
+    assert floor > 0 > ceiling
+    assert "[" in capsys.readouterr().out
 
 
 def test_viz_is_lazy():

@@ -380,3 +380,21 @@ def test_zero_gravity_is_the_straight_line_engine():
     sim.advance(until=5.0)
     ref.advance(until=5.0)
     assert np.array_equal(sim.positions, ref.positions)
+
+
+def test_floor_and_ceiling_carry_the_weight_of_the_gas():
+    """Momentum balance along gravity, exactly: the impulses of floor and ceiling over
+    a window, less the weight's N m g t, are the change of the gas's momentum; and
+    measure's floor pressure times the floor's length is the weight, to within that
+    change over the window."""
+    n, g = 300, 0.4
+    sim = ed.make_gas(n, 0.2, periodic=(True, False), seed=8, gravity=(0.0, -g))
+    sim.advance(until=50.0)
+    acc0, p0, t0 = sim._accumulators(), sim.momentum()[1], sim.time
+    m = sim.measure(duration=200.0)
+    acc1, p1 = sim._accumulators(), sim.momentum()[1]
+    floor, ceiling = (acc1["box_impulse"] - acc0["box_impulse"])[2:]
+    weight = n * 1.0 * g * (sim.time - t0)
+    assert floor - ceiling - weight == pytest.approx(p1 - p0, abs=1e-9 * weight)
+    assert m.box_wall_pressures[2] * sim.box.width == pytest.approx(
+        n * g, abs=abs(p1 - p0) / 200.0 + m.box_wall_pressures[3] * sim.box.width + 1e-9)

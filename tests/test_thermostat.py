@@ -207,3 +207,16 @@ def test_wall_temperatures_readout_names_the_walls():
     assert sim.thermostat is None
     assert ed.Simulation([[5.0, 5.0]], [[1.0, 0.0]], radii=0.5, box=WALLED,
                          thermostat=(1.0, 0.0)).thermostat is None
+
+
+def test_make_gas_builds_the_physics_and_seeds_its_random_numbers():
+    def gas():
+        return ed.make_gas(100, 0.2, periodic=(True, False), seed=4, restitution=0.9,
+                           gravity=(0.0, -0.5), wall_temperatures={"bottom": 3.0},
+                           thermostat=(1.0, 0.1))
+
+    a = gas().advance(until=10.0)
+    b = gas().advance(until=10.0)
+    assert np.array_equal(a.velocities, b.velocities)
+    assert a.restitution.tolist() == [[0.9]] and a.thermostat == (1.0, 0.1)
+    assert a.wall_temperatures == {"bottom": 3.0} and a.counts.redraws > 0

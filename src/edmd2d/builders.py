@@ -29,6 +29,11 @@ def make_gas(
     temperature: float = 1.0,
     seed=None,
     gravity=None,
+    restitution=1.0,
+    wall_restitution=1.0,
+    tc=None,
+    wall_temperatures=None,
+    thermostat=None,
 ) -> Simulation:
     """A hard-disk gas at a given packing fraction, ready to run.
 
@@ -64,10 +69,14 @@ def make_gas(
     temperature : float, default 1.0
         k_B T of the initial velocities, >= 0.
     seed : int, numpy.random.Generator or None
-        Makes the vacancies, species order and velocities reproducible.
+        Makes the vacancies, species order and velocities reproducible, and the random
+        numbers of a thermostat or heated walls (the same generator goes on).
     gravity : array_like, shape (2,), optional
         A uniform acceleration of every disk (see :class:`~edmd2d.Simulation`).  The
         start is still uniform: the gas settles into its height profile as it runs.
+    restitution, wall_restitution, tc, wall_temperatures, thermostat : optional
+        The physics, as for :class:`~edmd2d.Simulation` (the default ``tc`` is taken
+        from the initial velocities at ``temperature``).
 
     Returns
     -------
@@ -126,7 +135,9 @@ def make_gas(
     pos = sites[pick]
     rad = rad[rng.permutation(n)] if radii is not None else rad
     vel = _maxwell_boltzmann(rng, mass, temperature, sum(box.periodic))
-    return Simulation(pos, vel, rad, mass, box=box, gravity=gravity)
+    return Simulation(pos, vel, rad, mass, box=box, gravity=gravity, restitution=restitution,
+                      wall_restitution=wall_restitution, tc=tc,
+                      wall_temperatures=wall_temperatures, thermostat=thermostat, seed=rng)
 
 
 def lattice_packing_limit(n: int, *, radius=0.5, radii=None, aspect=1.0, periodic=True) -> float:

@@ -341,6 +341,13 @@ def measure(sim, duration: float, *, blocks: int = 10,
     The area of immovable disks is not taken out of ``A``.  A collision with an
     immovable disk adds to ``collisions`` like any other.
 
+    Under gravity the pressure varies with height and ``pressure`` (the collision
+    virial without the field's ``sum m g.r`` term) is not a pressure of the gas; the
+    wall pressures still are the mean forces on the walls (on the floor, the weight of
+    the gas over the floor's length, once it has settled).  Likewise a thermostat or
+    heated walls drive the gas out of equilibrium: the wall pressures and ``Z`` are
+    measured as defined, at the temperature of the disks.
+
     Parameters
     ----------
     sim : Simulation

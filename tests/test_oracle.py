@@ -30,19 +30,42 @@ def _walls(kind, box):
     raise ValueError(kind)
 
 
+def _system(seed, periodic, walls_kind, peg_every, smallest=2.5, most=9):
+    """A random small system of box kind ``periodic`` (sides from ``smallest`` to 7)
+    with walls of ``walls_kind`` and 2 to ``most`` disks, with a fixed peg (disk 0) for
+    every ``peg_every``-th seed."""
+    rng = np.random.default_rng(seed)
+    box = ed.Box(rng.uniform(smallest, 7.0), rng.uniform(smallest, 7.0), periodic=periodic)
+    walls = _walls(walls_kind, box)
+    pos, vel, rad, mass = random_system(rng, int(rng.integers(2, most + 1)), box, walls)
+    if seed % peg_every == 0 and len(pos) > 2:
+        mass[0] = np.inf
+        vel[0] = 0.0
+    return box, walls, (pos, vel, rad, mass)
+
+
+def _assert_same_run(sim, ref, box):
+    """The engine's recorded events and final state against the oracle's: events in
+    the same order, times and state to 1e-9."""
+    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
+    assert [e[1:] for e in got] == [e[1:] for e in want]
+    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-9)
+    assert sim.time == ref.time
+    d = sim.positions - ref.positions
+    for axis in range(2):
+        if box.periodic[axis]:
+            d[:, axis] -= box.size[axis] * np.round(d[:, axis] / box.size[axis])
+    np.testing.assert_allclose(d, 0.0, atol=1e-9)
+    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-9)
+
+
 CASES = [(seed, BOX_KINDS[seed % 4], ("none", "divider", "polygon")[seed % 3])
          for seed in range(48)]
 
 
 @pytest.mark.parametrize("seed, periodic, walls_kind", CASES)
 def test_same_events_and_final_state_as_reference(seed, periodic, walls_kind):
-    rng = np.random.default_rng(seed)
-    box = ed.Box(rng.uniform(2.5, 7.0), rng.uniform(2.5, 7.0), periodic=periodic)
-    walls = _walls(walls_kind, box)
-    pos, vel, rad, mass = random_system(rng, int(rng.integers(2, 10)), box, walls)
-    if seed % 5 == 0 and len(pos) > 2:  # a fixed peg among them
-        mass[0] = np.inf
-        vel[0] = 0.0
+    box, walls, (pos, vel, rad, mass) = _system(seed, periodic, walls_kind, 5)
     sim = ed.Simulation(pos, vel, rad, mass, box=box, walls=walls)
     sim._record_events(10_000)
     ref = ReferenceSimulation(pos, vel, rad, mass, box=box, walls=walls)
@@ -52,16 +75,8 @@ def test_same_events_and_final_state_as_reference(seed, periodic, walls_kind):
     t_end = 1.5
     sim.advance(until=t_end)
     ref.advance(until=t_end)
-    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
-    assert [e[1:] for e in got] == [e[1:] for e in want]
-    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-9)
-    assert sim.time == ref.time == t_end
-    d = sim.positions - ref.positions
-    for axis in range(2):
-        if box.periodic[axis]:
-            d[:, axis] -= box.size[axis] * np.round(d[:, axis] / box.size[axis])
-    np.testing.assert_allclose(d, 0.0, atol=1e-9)
-    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-9)
+    _assert_same_run(sim, ref, box)
+    assert sim.time == t_end
     assert sim.counts.collisions == ref.collisions
     assert sim.counts.wall_collisions == ref.wall_collisions
 
@@ -89,13 +104,7 @@ def test_same_events_under_gravity_as_reference(seed, periodic, walls_kind, grav
     """Parabolic flights: walls, segments (sides and end points), pegs (quartic
     contacts), periodic wraps and, for inelastic disks with a long tc, disks that come
     to rest on a floor and are freed again, against the oracle's independent roots."""
-    rng = np.random.default_rng(500 + seed)
-    box = ed.Box(rng.uniform(3.0, 7.0), rng.uniform(3.0, 7.0), periodic=periodic)
-    walls = _walls(walls_kind, box)
-    pos, vel, rad, mass = random_system(rng, int(rng.integers(2, 9)), box, walls)
-    if seed % 3 == 0 and len(pos) > 2:
-        mass[0] = np.inf
-        vel[0] = 0.0
+    box, walls, (pos, vel, rad, mass) = _system(500 + seed, periodic, walls_kind, 3, 3.0, 8)
     model = dict(restitution=0.6, wall_restitution=0.3, tc=0.2) if inelastic else {}
     sim = ed.Simulation(pos, vel, rad, mass, box=box, walls=walls, gravity=gravity,
                         **model)
@@ -108,15 +117,7 @@ def test_same_events_under_gravity_as_reference(seed, periodic, walls_kind, grav
     t_end = 3.0 if inelastic else 2.0
     sim.advance(until=t_end)
     ref.advance(until=t_end)
-    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
-    assert [e[1:] for e in got] == [e[1:] for e in want]
-    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-9)
-    d = sim.positions - ref.positions
-    for axis in range(2):
-        if box.periodic[axis]:
-            d[:, axis] -= box.size[axis] * np.round(d[:, axis] / box.size[axis])
-    np.testing.assert_allclose(d, 0.0, atol=1e-9)
-    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-9)
+    _assert_same_run(sim, ref, box)
     assert sim.total_energy() + sim.dissipated_energy() == pytest.approx(
         ref.total_energy() + ref.dissipated, rel=1e-9)
 
@@ -131,13 +132,7 @@ def test_same_events_with_thermostat_and_heated_walls_as_reference(seed, periodi
     """Andersen redraws at their exact times and heated walls (box walls and a
     segment), drawn from one seeded stream: the same events, draws and final states as
     the oracle, which takes its numbers from the same stream in the same order."""
-    rng = np.random.default_rng(900 + seed)
-    box = ed.Box(rng.uniform(3.0, 7.0), rng.uniform(3.0, 7.0), periodic=periodic)
-    walls = _walls(walls_kind, box)
-    pos, vel, rad, mass = random_system(rng, int(rng.integers(2, 9)), box, walls)
-    if seed % 3 == 0 and len(pos) > 2:
-        mass[0] = np.inf
-        vel[0] = 0.0
+    box, walls, (pos, vel, rad, mass) = _system(900 + seed, periodic, walls_kind, 3, 3.0, 8)
     heated = {name: 1.5 + k for k, name in enumerate(("left", "right", "bottom", "top"))
               if not box.periodic[k // 2] and k % 2 == seed % 2}
     if walls:
@@ -150,15 +145,7 @@ def test_same_events_with_thermostat_and_heated_walls_as_reference(seed, periodi
     t_end = 2.0
     sim.advance(until=t_end)
     ref.advance(until=t_end)
-    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
-    assert [e[1:] for e in got] == [e[1:] for e in want]
+    _assert_same_run(sim, ref, box)
     assert sim.counts.redraws == ref.redraws > 0
-    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-9)
-    d = sim.positions - ref.positions
-    for axis in range(2):
-        if box.periodic[axis]:
-            d[:, axis] -= box.size[axis] * np.round(d[:, axis] / box.size[axis])
-    np.testing.assert_allclose(d, 0.0, atol=1e-9)
-    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-9)
     np.testing.assert_allclose(sim.wall_heat(), ref.wall_heat, rtol=1e-9, atol=1e-12)
     assert sim.thermostat_energy() == pytest.approx(ref.thermostat_energy, rel=1e-9)

@@ -41,6 +41,21 @@ def pair_time(dx, dy, dvx, dvy, d):
 
 
 @njit
+def _segment_frame(x, y, vx, vy, ax, ay, bx, by):
+    """The segment ``a -> b`` seen from a centre at ``(x, y)`` moving at ``v``: its
+    vector ``u``, ``u.u``, its unit normal ``n`` (to the left of ``u``), the signed
+    distance ``h = (p - a).n`` of the centre from its line and the normal velocity
+    ``w = v.n``."""
+    ux = bx - ax
+    uy = by - ay
+    ll = ux * ux + uy * uy
+    inv_len = 1.0 / math.sqrt(ll)
+    nx = -uy * inv_len
+    ny = ux * inv_len
+    return ux, uy, ll, nx, ny, (x - ax) * nx + (y - ay) * ny, vx * nx + vy * ny
+
+
+@njit
 def segment_time(x, y, vx, vy, r, ax, ay, bx, by):
     """First contact of a moving circle with the segment ``a -> b`` (its side, or else an
     end point).
@@ -56,14 +71,7 @@ def segment_time(x, y, vx, vy, r, ax, ay, bx, by):
     the foot point lies on the segment (``0 <= s <= 1``).  Otherwise the first contact,
     if any, is with an end point, a circle of radius 0 (:func:`pair_time` with ``d = r``).
     """
-    ux = bx - ax
-    uy = by - ay
-    ll = ux * ux + uy * uy
-    inv_len = 1.0 / math.sqrt(ll)
-    nx = -uy * inv_len
-    ny = ux * inv_len
-    h = (x - ax) * nx + (y - ay) * ny
-    w = vx * nx + vy * ny
+    ux, uy, ll, nx, ny, h, w = _segment_frame(x, y, vx, vy, ax, ay, bx, by)
     if h * w < 0.0:
         dt = (abs(h) - r) / abs(w)
         if dt < 0.0:
@@ -234,7 +242,7 @@ def _bisect_rate(lo, hi, px, py, vx, vy, ax, ay):
 
 @njit
 def point_time(px, py, vx, vy, ax, ay, d, horizon):
-    """First contact before ``horizon`` (a time, may be ``inf``) of a centre at relative
+    """First contact by ``horizon`` (a time, may be ``inf``) of a centre at relative
     position ``p``, velocity ``v`` and constant acceleration ``a`` (not zero) with a
     fixed point at distance ``d`` (a segment's end point, an immovable disk); ``inf``
     if none.
@@ -264,12 +272,12 @@ def point_time(px, py, vx, vy, ax, ay, d, horizon):
     vmag = math.sqrt(vx * vx + vy * vy)
     pmag = math.sqrt(px * px + py * py)
     h = (vmag + math.sqrt(vmag * vmag + 2.0 * amag * (pmag + d))) / amag
-    if horizon < h:
-        h = horizon
-        # Out of reach before the horizon: the distance shrinks by at most
-        # |v| t + |a| t^2 / 2.
-        if pmag - d > h * (vmag + 0.5 * amag * h):
-            return INF
+    # Out of reach before the horizon: the distance shrinks by at most |v| t + |a| t^2/2.
+    if horizon < h and pmag - d > horizon * (vmag + 0.5 * amag * horizon):
+        return INF
+    # (The search itself always spans [0, T*], so that the time found does not depend
+    # on the horizon: the same contact seen from two predictions, or the shared corner
+    # of two segments, gets the same time to the last bit.)
     # Pieces on which s is monotone: cut at the roots r1 <= r2 of s' in (0, h).
     c2 = 1.5 * aa
     c1 = 3.0 * (vx * ax + vy * ay)
@@ -298,11 +306,12 @@ def point_time(px, py, vx, vy, ax, ay, d, horizon):
             turn = _bisect_rate(prev, end, px, py, vx, vy, ax, ay)
             t, flo_next = _fall(lo_f, turn, flo, px, py, vx, vy, ax, ay, d2)
             if t < INF:
-                return t
+                return t if t <= horizon else INF
             lo_f = turn
             flo = flo_next
         prev = end
-    return _fall(lo_f, h, flo, px, py, vx, vy, ax, ay, d2)[0]
+    t = _fall(lo_f, h, flo, px, py, vx, vy, ax, ay, d2)[0]
+    return t if t <= horizon else INF
 
 
 @njit
@@ -336,14 +345,7 @@ def segment_time_accel(x, y, vx, vy, gx, gy, r, ax, ay, bx, by, horizon):
     shelf, it falls onto its top): that later crossing is :func:`return_time`.  The end
     points are fixed points (:func:`point_time`); the earliest valid candidate wins.
     """
-    ux = bx - ax
-    uy = by - ay
-    ll = ux * ux + uy * uy
-    inv_len = 1.0 / math.sqrt(ll)
-    nx = -uy * inv_len
-    ny = ux * inv_len
-    h = (x - ax) * nx + (y - ay) * ny
-    w = vx * nx + vy * ny
+    ux, uy, ll, nx, ny, h, w = _segment_frame(x, y, vx, vy, ax, ay, bx, by)
     an = 0.5 * (gx * nx + gy * ny)
     if h < 0.0:  # (look at the line from the disk's side)
         h = -h

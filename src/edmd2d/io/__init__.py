@@ -1,0 +1,3 @@
+"""Files: GSD trajectories (:mod:`edmd2d.io.gsd`, the HOOMD schema read by OVITO,
+freud and HOOMD-blue; needs the ``gsd`` package, ``pip install edmd2d[io]``).
+Checkpoints for exact restarts are in :mod:`edmd2d.checkpoint`."""

@@ -1,0 +1,272 @@
+"""GSD trajectories in the HOOMD schema, for OVITO, freud and HOOMD-blue tools.
+
+:class:`Writer` appends frames of a :class:`~edmd2d.Simulation` to a GSD file;
+:func:`record` runs a simulation and writes a frame at each of a list of times;
+:func:`read` builds a Simulation from a frame (one written here, or by another
+program).  Needs the ``gsd`` package (``pip install edmd2d[io]``).
+
+What a frame holds (HOOMD conventions):
+
+- ``configuration.box = [W, H, 0, 0, 0, 0]`` and ``configuration.dimensions = 2``;
+  ``configuration.step``: the number of events processed so far.
+- ``particles.position``: the centres at the frame's time, shifted so that the box is
+  centred at the origin (``x - W/2``, ``y - H/2``, ``z = 0``), wrapped into the box;
+  ``particles.image``: the periodic images crossed, so that ``position + image * L``
+  is the unwrapped position; ``diameter`` (``2 r``), ``mass`` (an immovable disk's
+  ``inf`` is stored as 0, HOOMD's "no mass"), ``velocity``, and ``typeid`` the species
+  (types named ``"A"``, ``"B"``, ...).
+- ``log/edmd2d/...``: what the schema has no place for, so that nothing is lost: the
+  ``time``; the box's ``W, H`` in float64 (``box``); the ``periodic`` flags of the two
+  axes (1 periodic, 0 walled); the wall segments ``walls`` as rows
+  ``(x0, y0, x1, y1)`` in the frame's centred coordinates;
+  ``gravity``; ``immovable`` (1 for disks of infinite mass); the counts
+  ``collisions``, ``wall_collisions`` and ``events``; the kinetic and total
+  ``energy``; and, over the window from the writer's first frame to this one, the
+  ``pressure`` (virial: ``P A = N kT + sum J |r_ij| / 2t``, with ``kT`` averaged over
+  the frames written) and the ``wall_pressure`` on each box wall (x=0, x=W, y=0,
+  y=H: its impulse per unit length and time, exact).
+
+**Precision.** GSD stores positions, velocities and diameters in float32: about 7
+significant digits.  In a dense system two touching disks' centres are then known to
+about ``1e-7`` of the box size, so a frame read back can overlap by that much, more
+than :class:`~edmd2d.Simulation` accepts (``1e-9``).  :func:`read` offers
+``radius_scale`` to shrink the disks by such a fraction; for exact restarts use
+:mod:`edmd2d.checkpoint`, which keeps float64.
+"""
+
+from __future__ import annotations
+
+import math
+import string
+
+import numpy as np
+
+from .. import measurements as _measurements
+from ..geometry import Box, Wall
+
+__all__ = ["Writer", "record", "read"]
+
+
+def _gsd_hoomd():
+    try:
+        import gsd.hoomd
+    except ImportError:  # pragma: no cover - exercised only without the extra
+        raise ImportError("GSD files need the gsd package: pip install 'edmd2d[io]' "
+                          "(or pip install gsd)") from None
+    return gsd.hoomd
+
+
+def _type_names(n: int) -> list[str]:
+    letters = string.ascii_uppercase
+    return [letters[k] if k < 26 else f"T{k}" for k in range(n)]
+
+
+class Writer:
+    """Append frames of a simulation to a GSD file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    mode : {"w", "a"}, default "w"
+        ``"w"`` creates the file (replacing one that exists), ``"a"`` appends to it.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> import edmd2d as ed
+    >>> from edmd2d.io import gsd
+    >>> sim = ed.make_gas(100, 0.3, seed=1)
+    >>> path = os.path.join(tempfile.mkdtemp(), "gas.gsd")
+    >>> with gsd.Writer(path) as out:
+    ...     for t in (1.0, 2.0, 3.0):
+    ...         _ = sim.advance(until=t)
+    ...         out.write(sim)
+    >>> gsd.read(path, frame=-1).time
+    3.0
+    """
+
+    def __init__(self, path, mode: str = "w") -> None:
+        if mode not in ("w", "a"):
+            raise ValueError(f"mode must be 'w' or 'a', got {mode!r}")
+        self._file = _gsd_hoomd().open(str(path), mode)
+        self._start = None  # (time, accumulators) at the first frame written
+        self._temperatures: list[float] = []
+
+    def write(self, sim) -> None:
+        """Append the state of ``sim`` at its current time as a frame."""
+        from ..simulation import Simulation
+
+        if not isinstance(sim, Simulation):
+            raise TypeError(f"write() needs an edmd2d.Simulation, got {type(sim).__name__}")
+        self._file.append(_frame(sim, self))
+
+    def close(self) -> None:
+        """Close the file (also on leaving a ``with`` block)."""
+        self._file.close()
+
+    def __enter__(self) -> Writer:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def _frame(sim, writer: Writer):
+    hoomd = _gsd_hoomd()
+    box = sim.box
+    width, height = box.width, box.height
+    centre = np.array([width / 2.0, height / 2.0])
+    pos = sim.positions - centre
+    unwrapped = sim.unwrapped_positions - centre
+    image = np.zeros((len(sim), 3), np.int32)
+    for axis, length in enumerate(box.size):
+        if box.periodic[axis]:
+            image[:, axis] = np.round((unwrapped[:, axis] - pos[:, axis]) / length)
+    species = sim.species
+    frame = hoomd.Frame()
+    frame.configuration.box = [width, height, 0.0, 0.0, 0.0, 0.0]
+    frame.configuration.dimensions = 2
+    frame.configuration.step = sim.counts.events
+    p = frame.particles
+    p.N = len(sim)
+    p.types = _type_names(int(species.max()) + 1)
+    p.typeid = species.astype(np.uint32)
+    p.position = np.c_[pos, np.zeros(len(sim))].astype(np.float32)
+    p.image = image
+    p.diameter = (2.0 * sim.radii).astype(np.float32)
+    masses = sim.masses
+    p.mass = np.where(np.isfinite(masses), masses, 0.0).astype(np.float32)
+    p.velocity = np.c_[sim.velocities, np.zeros(len(sim))].astype(np.float32)
+
+    acc = sim._accumulators()
+    temperature = _measurements.kinetic_temperature(sim)
+    if writer._start is None:
+        writer._start = (sim.time, acc)
+    writer._temperatures.append(temperature)
+    t0, acc0 = writer._start
+    elapsed = sim.time - t0
+    pressure = wall_pressure = math.nan
+    if elapsed > 0.0:
+        n = int(np.isfinite(masses).sum())
+        kt = float(np.nanmean(writer._temperatures))
+        area = _measurements.container_area(sim)
+        pressure = (n * kt + (acc["virial"] - acc0["virial"]) / (2.0 * elapsed)) / area
+        lengths = np.array([height, height, width, width])
+        wall_pressure = (acc["box_impulse"] - acc0["box_impulse"]) / (elapsed * lengths)
+    walls = np.array([[*np.subtract(w.start, centre), *np.subtract(w.end, centre)]
+                      for w in sim.walls], np.float64).reshape(-1, 4)
+    counts = sim.counts
+    frame.log = {
+        "edmd2d/time": np.array([sim.time]),
+        "edmd2d/box": np.array([width, height]),  # (float64: the box above is float32)
+        "edmd2d/periodic": np.array(box.periodic, np.uint8),
+        "edmd2d/walls": walls,
+        "edmd2d/gravity": np.asarray(sim.gravity, np.float64),
+        "edmd2d/immovable": (~np.isfinite(masses)).astype(np.uint8),
+        "edmd2d/collisions": np.array([counts.collisions], np.int64),
+        "edmd2d/wall_collisions": np.array([counts.wall_collisions], np.int64),
+        "edmd2d/events": np.array([counts.events], np.int64),
+        "edmd2d/kinetic_energy": np.array([sim.kinetic_energy()]),
+        "edmd2d/total_energy": np.array([sim.total_energy()]),
+        "edmd2d/pressure": np.array([pressure]),
+        "edmd2d/wall_pressure": np.broadcast_to(wall_pressure, (4,)).astype(np.float64),
+    }
+    return frame
+
+
+def record(sim, path, times, mode: str = "w") -> None:
+    """Advance ``sim`` to each of ``times`` (increasing, not before ``sim.time``) and
+    write a frame there.
+
+    Parameters
+    ----------
+    sim : Simulation
+    path : str or os.PathLike
+    times : array_like of float
+    mode : {"w", "a"}, default "w"
+    """
+    times = np.asarray(times, np.float64)
+    if times.ndim != 1 or not np.all(np.isfinite(times)):
+        raise ValueError("times must be a 1-D array of finite times")
+    if np.any(np.diff(times) < 0) or (len(times) and times[0] < sim.time):
+        raise ValueError(f"times must increase from the simulation's time {sim.time}")
+    with Writer(path, mode) as out:
+        for t in times:
+            sim.advance(until=float(t))
+            out.write(sim)
+
+
+def read(path, frame: int = -1, *, radius_scale: float = 1.0, **physics):
+    """A :class:`~edmd2d.Simulation` from a frame of a GSD file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    frame : int, default -1
+        Which frame (negative counts from the end).
+    radius_scale : float, default 1.0
+        Factor on the radii read (in ``(0, 1]``): float32 positions of a dense frame
+        can overlap by ``~1e-7`` of the box (see the module notes).
+    **physics
+        Keywords passed to the Simulation (``restitution=``, ``gravity=``, ...);
+        ``gravity`` and the wall segments default to those logged by edmd2d.
+
+    Returns
+    -------
+    Simulation
+        At the frame's logged time (0 for a frame without one).  Only the state is
+        read: counts, tallies and random numbers start afresh (restart exactly from a
+        checkpoint instead).
+
+    Raises
+    ------
+    ValueError
+        For a frame that is not two-dimensional, a tilted box, a missing frame, or a
+        state that is not a valid hard-disk state (overlaps, disks outside the box):
+        the Simulation's own error, naming the disks.
+    """
+    hoomd = _gsd_hoomd()
+    if not 0.0 < radius_scale <= 1.0:
+        raise ValueError(f"radius_scale must lie in (0, 1], got {radius_scale}")
+    with hoomd.open(str(path), "r") as traj:
+        if not -len(traj) <= frame < len(traj):
+            raise ValueError(f"{path} has {len(traj)} frames; frame {frame} does not exist")
+        f = traj[frame]
+        log = {k: np.asarray(v) for k, v in f.log.items()}
+    if f.configuration.dimensions != 2:
+        raise ValueError(f"frame {frame} of {path} is {f.configuration.dimensions}-"
+                         "dimensional; edmd2d reads 2-dimensional frames")
+    lx, ly, _, xy, _, _ = (float(v) for v in f.configuration.box)
+    if "edmd2d/box" in log:
+        lx, ly = (float(v) for v in log["edmd2d/box"])
+    if xy != 0.0:
+        raise ValueError(f"frame {frame} of {path} has a tilted box (xy = {xy}); "
+                         "edmd2d boxes are rectangles")
+    periodic = tuple(bool(v) for v in log.get("edmd2d/periodic", np.array([1, 1])))
+    box = Box(lx, ly, periodic=periodic)
+    centre = np.array([lx / 2.0, ly / 2.0])
+    n = int(f.particles.N)
+    pos = np.asarray(f.particles.position, np.float64)[:, :2] + centre
+    for axis in range(2):  # (float32 rounding can put a centre a hair outside)
+        if periodic[axis]:
+            pos[:, axis] %= box.size[axis]
+    vel = (np.zeros((n, 2)) if f.particles.velocity is None
+           else np.asarray(f.particles.velocity, np.float64)[:, :2])
+    diameter = (np.ones(n) if f.particles.diameter is None
+                else np.asarray(f.particles.diameter, np.float64))
+    mass = (np.ones(n) if f.particles.mass is None
+            else np.asarray(f.particles.mass, np.float64))
+    if "edmd2d/immovable" in log:
+        mass = np.where(log["edmd2d/immovable"].astype(bool), np.inf, mass)
+    physics.setdefault("species", None if f.particles.typeid is None
+                       else np.asarray(f.particles.typeid, np.int64))
+    if "edmd2d/gravity" in log:
+        physics.setdefault("gravity", log["edmd2d/gravity"])
+    walls = [Wall(tuple(row[:2] + centre), tuple(row[2:] + centre))
+             for row in log.get("edmd2d/walls", np.zeros((0, 4))).reshape(-1, 4)]
+    time = float(log["edmd2d/time"][0]) if "edmd2d/time" in log else 0.0
+    from ..simulation import Simulation
+
+    return Simulation(pos, vel, 0.5 * diameter * radius_scale, mass, box=box, walls=walls,
+                      time=time, **physics)

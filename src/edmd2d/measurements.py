@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import progress as _progress
 from ._validate import as_count, as_positive_float
 
 __all__ = ["Measurement", "measure", "kinetic_temperature", "degrees_of_freedom",
@@ -275,7 +276,7 @@ def kinetic_temperature(sim) -> float:
 
 
 def measure(sim, duration: float, *, blocks: int = 10,
-            area: float | None = None) -> Measurement:
+            area: float | None = None, progress=False) -> Measurement:
     """Run ``sim`` for ``duration`` and measure pressure, temperature and collision rates.
 
     The window is cut into ``blocks`` equal sub-windows; the values returned are the
@@ -359,6 +360,9 @@ def measure(sim, duration: float, *, blocks: int = 10,
     area : float, optional
         The area ``A`` of the pressure and of ``Z``, > 0.  Default: the container's
         area, :func:`container_area` (see above).
+    progress : bool or tqdm bar, default False
+        ``True`` shows a progress bar of the simulated time over the whole window
+        (:mod:`edmd2d.progress`).
 
     Returns
     -------
@@ -415,14 +419,19 @@ def measure(sim, duration: float, *, blocks: int = 10,
     axis_temps = [_axis_temperatures(sim, movable)]
     speeds = [_mean_speed(sim, movable)]
     coll = [counts0.collisions]
-    for b in range(1, blocks + 1):
-        t_end = t0 + duration * b / blocks if b < blocks else t0 + duration
-        sim.advance(until=t_end)
-        edges_acc.append(sim._accumulators())
-        temps.append(kinetic_temperature(sim))
-        axis_temps.append(_axis_temperatures(sim, movable))
-        speeds.append(_mean_speed(sim, movable))
-        coll.append(sim.counts.collisions)
+    bar, owned = _progress.bar(progress, total=duration, unit="time", desc="measure")
+    try:
+        for b in range(1, blocks + 1):
+            t_end = t0 + duration * b / blocks if b < blocks else t0 + duration
+            sim.advance(until=t_end, progress=bar if bar is not None else False)
+            edges_acc.append(sim._accumulators())
+            temps.append(kinetic_temperature(sim))
+            axis_temps.append(_axis_temperatures(sim, movable))
+            speeds.append(_mean_speed(sim, movable))
+            coll.append(sim.counts.collisions)
+    finally:
+        if owned:
+            bar.close()
     tau = duration / blocks
 
     virial = np.diff([a["virial"] for a in edges_acc])

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import copy
 import math
+import time as _time
 from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import models as _models
+from . import progress as _progress
 from ._engine import aligned_rows
 from ._engine import flight as _flight
 from ._engine import grid as _grid
@@ -31,6 +33,8 @@ _OVERLAP_TOL = 1e-9
 _CELL_MARGIN = 1e-9
 # Events per engine call; between calls Python regains control (Ctrl-C works).
 _CHUNK_EVENTS = 1 << 22
+# Events per engine call when a progress bar is shown (a few ms at 10^6 coll/s).
+_PROGRESS_EVENTS = 1 << 16
 # Systems at least this large are kept sorted in memory along a Z-order curve over the
 # grid cells, re-sorted every _REORDER_EVENTS_PER_DISK * N events: disks near in space
 # then sit near in memory, which matters once the state no longer fits in the caches.
@@ -568,7 +572,8 @@ class Simulation:
         self._run(math.inf, 0, 0, np.array([self._time]), np.full(2, -1, np.int64),
                   _layout.PREDICT_ALL)
 
-    def advance(self, until: float | None = None, collisions: int | None = None) -> Simulation:
+    def advance(self, until: float | None = None, collisions: int | None = None,
+                progress=False) -> Simulation:
         """Run the simulation forward, event by event, in time order.
 
         Parameters
@@ -580,6 +585,10 @@ class Simulation:
         collisions : int, optional
             Stop right after this many further disk-disk collisions; :attr:`time` is
             then the time of the last one.  ``0`` does nothing.
+        progress : bool or tqdm bar, default False
+            ``True`` shows a progress bar (:mod:`edmd2d.progress`) of the simulated
+            time (or, with ``collisions`` alone, of the collisions) and the collisions
+            per second; a tqdm bar passed in is advanced by the simulated time.
 
         If both are given the run stops at whichever comes first.
 
@@ -626,30 +635,18 @@ class Simulation:
                 return self
 
         self._check_clock_resolves_crossings(t_end)
-        remaining = max_coll
-        out = np.array([self._time])
-        info = np.full(2, -1, np.int64)
-        while True:
-            before = int(self._counts[_layout.C_COLLISIONS])
-            events_before = self.counts.events
-            budget = min(_CHUNK_EVENTS, self._reorder_every - self._since_reorder)
-            try:
-                status = self._run(t_end, remaining, budget, out, info, _layout.RUN_EVENTS)
-            finally:
-                # Also when Ctrl-C arrives as the engine returns: the clock must follow
-                # the events the engine has processed, or positions would be read at a
-                # time earlier than the disks' own.
-                self._time = float(out[0])
-                self._since_reorder += self.counts.events - events_before
-            remaining -= int(self._counts[_layout.C_COLLISIONS]) - before
-            if status == _layout.NEED_RANDOM:
-                self._model.refill()
-                continue
-            if status != _layout.REACHED_EVENT_LIMIT:
-                # (No reordering here: an error below names disks by internal index.)
-                break
-            if self._since_reorder >= self._reorder_every:
-                self._reorder()
+        by_time = until is not None
+        bar, owned = _progress.bar(
+            progress, total=(t_end - self._time) if by_time else max_coll,
+            unit="time" if by_time else "coll", desc="advance")
+        try:
+            status, info, remaining = self._advance(t_end, max_coll, bar, by_time)
+            if bar is not None and by_time and status in (_layout.REACHED_TIME,
+                                                          _layout.NO_EVENTS):
+                bar.update(t_end - self._time)  # (the flight after the last event)
+        finally:
+            if owned:
+                bar.close()
         if status in (_layout.REACHED_TIME, _layout.NO_EVENTS) and until is not None:
             self._time = t_end
             return self
@@ -661,6 +658,48 @@ class Simulation:
                 f"{remaining} of the {max_coll} requested collisions cannot occur"
             )
         raise self._engine_error(status, int(info[0]), int(info[1]))
+
+    def _advance(self, t_end, max_coll, bar, by_time):
+        """The engine calls of :meth:`advance`: ``(status, info, remaining)``, the final
+        status, the disks it names and the collisions still to go.  With a progress bar
+        the calls are shorter (``_PROGRESS_EVENTS``) and the bar is updated after
+        each."""
+        remaining = max_coll
+        out = np.array([self._time])
+        info = np.full(2, -1, np.int64)
+        chunk = _CHUNK_EVENTS if bar is None else _PROGRESS_EVENTS
+        clock = _time.perf_counter()
+        while True:
+            before = int(self._counts[_layout.C_COLLISIONS])
+            events_before = self.counts.events
+            shown = self._time
+            budget = min(chunk, self._reorder_every - self._since_reorder)
+            try:
+                status = self._run(t_end, remaining, budget, out, info, _layout.RUN_EVENTS)
+            finally:
+                # Also when Ctrl-C arrives as the engine returns: the clock must follow
+                # the events the engine has processed, or positions would be read at a
+                # time earlier than the disks' own.
+                self._time = float(out[0])
+                self._since_reorder += self.counts.events - events_before
+            done = int(self._counts[_layout.C_COLLISIONS]) - before
+            remaining -= done
+            if bar is not None:
+                now = _time.perf_counter()
+                if by_time:
+                    bar.update(self._time - shown)
+                    rate = (max_coll - remaining) / max(now - clock, 1e-9)
+                    bar.set_postfix_str(f"{rate:.3g} coll/s", refresh=False)
+                else:  # (tqdm shows the rate of its own unit, collisions)
+                    bar.update(done)
+            if status == _layout.NEED_RANDOM:
+                self._model.refill()
+                continue
+            if status != _layout.REACHED_EVENT_LIMIT:
+                # (No reordering here: an error below names disks by internal index.)
+                return status, info, remaining
+            if self._since_reorder >= self._reorder_every:
+                self._reorder()
 
     def _check_clock_resolves_crossings(self, t_end: float) -> None:
         """Refuse a run to ``t_end`` at whose end the float64 clock could no longer

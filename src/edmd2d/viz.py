@@ -8,7 +8,7 @@ This is the only module of edmd2d that imports matplotlib (``pip install 'edmd2d
   simulation to exact, equally spaced frame times (``sim.advance(until=t_k)``);
 - :func:`save` -- write an animation to ``.gif`` (Pillow) or ``.mp4`` (ffmpeg, found on the
   PATH or supplied by ``pip install 'edmd2d[video]'``), or a still to ``.png``/``.pdf``/...,
-  with a text progress bar.  The animation's own ``save`` method is the same function.
+  with a progress bar (tqdm).  The animation's own ``save`` method is the same function.
 
 Disks are drawn at their true size in data units by a single
 :class:`~matplotlib.collections.EllipseCollection` whose offsets, sizes and colours are
@@ -37,7 +37,6 @@ import io
 import math
 import shutil
 import sys
-import time as _time
 from collections import deque
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -676,53 +675,33 @@ _SAVEFIG_GRABBERS = {
 
 
 class TextProgress:
-    """A text progress bar for :func:`save`: ``progress(frame_index, total_frames)``.
-
-    On a terminal the bar is redrawn in place (at most ten times a second); elsewhere
-    (a log file, CI) a line is printed at every tenth of the way.
+    """The progress bar of :func:`save` (a ``tqdm`` bar, see :mod:`edmd2d.progress`):
+    ``progress(frame_index, total_frames)`` after each frame.
 
     Parameters
     ----------
     stream : file-like, optional
-        Where to write; ``sys.stderr`` by default.
-    width : int, default 30
-        Characters in the bar.
+        Where to write; ``sys.stderr`` by default.  On a terminal tqdm redraws the bar
+        in place; elsewhere (a log file, CI) it prints a line at most every tenth of a
+        second.
+    width : int, default 60
+        Characters of the whole line.
     """
 
-    def __init__(self, stream=None, width: int = 30) -> None:
+    def __init__(self, stream=None, width: int = 60) -> None:
         self.stream = sys.stderr if stream is None else stream
         self.width = as_count("width", width)
-        self._start: float | None = None
-        self._last_print = -math.inf
-        self._last_tenth = -1
+        self._bar = None
 
     def __call__(self, i: int, n: int | None) -> None:
-        now = _time.perf_counter()
-        if self._start is None:
-            self._start = now
-        done = i + 1
-        elapsed = now - self._start
-        is_tty = getattr(self.stream, "isatty", lambda: False)()
-        last = n is not None and done >= n
-        if n is None:
-            line = f"frame {done}  {elapsed:.1f} s"
-            tenth = done // 10
-        else:
-            frac = min(done / n, 1.0)
-            filled = int(round(frac * self.width))
-            eta = elapsed / done * (n - done) if done else 0.0
-            bar = "#" * filled + "-" * (self.width - filled)
-            line = f"[{bar}] {done}/{n} frames  {elapsed:.1f} s, ~{eta:.0f} s left"
-            tenth = int(frac * 10)
-        if is_tty:
-            if last or now - self._last_print >= 0.1:
-                self.stream.write("\r" + line + ("\n" if last else ""))
-                self.stream.flush()
-                self._last_print = now
-        elif tenth > self._last_tenth or last:
-            self._last_tenth = tenth
-            self.stream.write(line + "\n")
-            self.stream.flush()
+        from tqdm.auto import tqdm
+
+        if self._bar is None:
+            self._bar = tqdm(total=n, unit="frame", desc="save", file=self.stream,
+                             ncols=self.width, leave=True)
+        self._bar.update(i + 1 - self._bar.n)
+        if n is not None and i + 1 >= n:
+            self._bar.close()
 
 
 # ---------------------------------------------------------------------- the scene

@@ -1,0 +1,28 @@
+"""Progress bars for long runs, animation saves and measurements (``tqdm``).
+
+Library calls show no bar unless asked (``progress=True``); the bar goes to standard
+error, redrawn in place on a terminal and printed as lines elsewhere (tqdm's own
+behaviour).  A call may also be handed an existing ``tqdm`` bar, which it advances:
+:func:`edmd2d.measurements.measure` passes one bar through its blocks this way.
+"""
+
+from __future__ import annotations
+
+__all__ = ["bar"]
+
+
+def bar(progress, *, total, unit: str, desc: str):
+    """The bar a call with ``progress`` should update: ``None`` for ``False``/``None``,
+    a new tqdm bar over ``total`` ``unit`` for ``True``, or ``progress`` itself if it is
+    already a bar (anything with ``update``).  ``(bar, owned)``: whether the caller
+    created it (and must close it)."""
+    if progress is None or progress is False:
+        return None, False
+    if progress is True:
+        from tqdm.auto import tqdm
+
+        return tqdm(total=total, unit=unit, desc=desc, dynamic_ncols=True,
+                    unit_scale=True, leave=True), True
+    if hasattr(progress, "update"):
+        return progress, False
+    raise TypeError(f"progress must be True, False or a tqdm bar, got {progress!r}")

@@ -43,6 +43,12 @@ _REORDER_EVENTS_PER_DISK = 20
 
 _KIND_NAMES = {_layout.DISK: "disk", _layout.SEGMENT: "wall", _layout.BOX: "box",
                _layout.KICK: "thermostat"}
+_KIND_CODES = np.array(sorted(_KIND_NAMES))
+#: The names of the streamed event kinds (:meth:`Simulation.stream_events`).
+EVENT_KINDS = tuple(_KIND_NAMES[k] for k in _KIND_CODES)
+#: The fields of a streamed batch of events.
+EVENT_DTYPE = np.dtype([("time", "f8"), ("kind", "U10"), ("disk", "i8"),
+                        ("partner", "i8"), ("impulse", "f8")])
 
 
 @dataclass(frozen=True)
@@ -279,9 +285,8 @@ class Simulation:
         self._model = model[1]
         self._counts = np.zeros(_layout.N_COUNTS, np.int64)
         self._acc = np.zeros(_layout.N_ACC, np.float64)
-        self._log_t = np.zeros(0)
-        self._log_e = np.zeros((0, 3), np.int64)
-        self._log_n = np.zeros(1, np.int64)
+        self._set_log(0)
+        self._listener = None  # (see stream_events; not part of the saved state)
         # Internal row k holds the user's disk order[k]; public getters translate.
         self._order = np.arange(n, dtype=np.int64)
         self._reorder_every = (
@@ -447,6 +452,13 @@ class Simulation:
         state = dict(vars(self))
         for name in self._ROW_VIEWS:
             del state[name]
+        # A stream's callback is not part of the state (nor what it has collected):
+        # a copy does not stream, and its log is empty.
+        for name in ("_listener", "_recorded"):
+            state.pop(name, None)
+        for name, empty in (("_log_t", np.zeros(0)), ("_log_e", np.zeros((0, 3), np.int64)),
+                            ("_log_j", np.zeros(0)), ("_log_n", np.zeros(1, np.int64))):
+            state[name] = empty
         return state
 
     def __copy__(self) -> Simulation:
@@ -481,6 +493,8 @@ class Simulation:
         state.setdefault("_species", None)
         state.setdefault("_cell_size", None)
         state.setdefault("_gravity", None)
+        state.setdefault("_log_j", np.zeros(len(state.get("_log_t", ()))))
+        state.setdefault("_listener", None)
         acc = state["_acc"]
         if len(acc) < _layout.N_ACC:
             state["_acc"] = np.concatenate([acc, np.zeros(_layout.N_ACC - len(acc))])
@@ -512,7 +526,7 @@ class Simulation:
             (self._gi, self._gf, self._head), self._wall_args(),
             (self._hv, self._qhead, self._qs, self._qf),
             (self._counts, self._acc, self._wacc),
-            (self._log_t, self._log_e, self._log_n),
+            (self._log_t, self._log_e, self._log_n, self._log_j),
             None if self._model is None else self._model.engine_params(),
             self._flight(),
         )
@@ -640,7 +654,10 @@ class Simulation:
             progress, total=(t_end - self._time) if by_time else max_coll,
             unit="time" if by_time else "coll", desc="advance")
         try:
-            status, info, remaining = self._advance(t_end, max_coll, bar, by_time)
+            try:
+                status, info, remaining = self._advance(t_end, max_coll, bar, by_time)
+            finally:
+                self._drain()  # (also on an error: the events up to it)
             if bar is not None and by_time and status in (_layout.REACHED_TIME,
                                                           _layout.NO_EVENTS):
                 bar.update(t_end - self._time)  # (the flight after the last event)
@@ -694,6 +711,9 @@ class Simulation:
                     bar.update(done)
             if status == _layout.NEED_RANDOM:
                 self._model.refill()
+                continue
+            if status == _layout.LOG_FULL:
+                self._drain()
                 continue
             if status != _layout.REACHED_EVENT_LIMIT:
                 # (No reordering here: an error below names disks by internal index.)
@@ -1131,22 +1151,85 @@ class Simulation:
             "segment_contacts": w[:, _layout.W_CONTACTS].astype(np.int64),
         }
 
-    def _record_events(self, capacity: int) -> None:
-        """Start recording disk and wall events (not cell crossings), up to ``capacity``."""
-        capacity = as_count("capacity", capacity)
+    def stream_events(self, callback, capacity: int = 1 << 16) -> None:
+        """Deliver every processed event to ``callback``, in batches, without loss.
+
+        Parameters
+        ----------
+        callback : callable or None
+            Called as ``callback(batch)`` with a NumPy structured array of up to
+            ``capacity`` events in time order, fields ``time``, ``kind`` (the names of
+            :data:`EVENT_KINDS`: ``"disk"``, ``"wall"`` (a segment), ``"box"``,
+            ``"thermostat"``), ``disk``, ``partner`` (a disk, a segment index, a box
+            wall 0-3 for x=0, x=width, y=0, y=height, or -1 for a thermostat redraw)
+            and ``impulse`` (the momentum change of a movable disk of the event).  Cell
+            crossings are bookkeeping, not streamed.  ``None`` stops the stream.
+        capacity : int, default 65536
+            Events per batch: when the engine's buffer is full it returns to Python
+            for ``callback``, then goes on; the last batch of a call of
+            :meth:`advance` comes at its end.
+
+        Notes
+        -----
+        With no stream the engine records nothing and costs nothing more.  The
+        callback is not part of the state: copies, pickles and checkpoints do not
+        stream.
+
+        Examples
+        --------
+        >>> import edmd2d as ed
+        >>> sim = ed.make_gas(100, 0.3, seed=1)
+        >>> batches = []
+        >>> sim.stream_events(batches.append, capacity=50)
+        >>> _ = sim.advance(collisions=120)
+        >>> sum(b["kind"].tolist().count("disk") for b in batches)
+        120
+        """
+        if callback is None:
+            self._drain()
+            self._listener = None
+            self._set_log(0)
+            return
+        if not callable(callback):
+            raise TypeError(f"callback must be callable or None, got {callback!r}")
+        capacity = as_count("capacity", capacity, minimum=1)
+        self._drain()
+        self._listener = callback
+        self._set_log(capacity)
+
+    def _set_log(self, capacity: int) -> None:
         self._log_t = np.zeros(capacity)
         self._log_e = np.zeros((capacity, 3), np.int64)
+        self._log_j = np.zeros(capacity)
         self._log_n = np.zeros(1, np.int64)
+
+    def _drain(self) -> None:
+        """Hand the events in the engine's log to the listener and empty it."""
+        k = int(self._log_n[0])
+        if k == 0 or self._listener is None:
+            return
+        batch = np.empty(k, dtype=EVENT_DTYPE)
+        batch["time"] = self._log_t[:k]
+        batch["kind"] = np.array(EVENT_KINDS)[np.searchsorted(_KIND_CODES,
+                                                              self._log_e[:k, 0])]
+        batch["disk"] = self._log_e[:k, 1]
+        batch["partner"] = self._log_e[:k, 2]
+        batch["impulse"] = self._log_j[:k]
+        self._log_n[0] = 0
+        self._listener(batch)
+
+    def _record_events(self, capacity: int = 1 << 16) -> None:
+        """Record every disk, wall and thermostat event (for :meth:`_recorded_events`)."""
+        self._recorded = []
+        self.stream_events(self._recorded.append, capacity)
 
     def _recorded_events(self) -> list[tuple[float, str, int, int]]:
         """Recorded events as ``(time, kind, disk, partner)``; kind is "disk", "wall"
-        (partner: wall index) or "box" (partner: 0..3 for x=0, x=width, y=0, y=height)."""
-        k = min(int(self._log_n[0]), len(self._log_t))
-        return [
-            (float(self._log_t[m]), _KIND_NAMES[int(self._log_e[m, 0])],
-             int(self._log_e[m, 1]), int(self._log_e[m, 2]))
-            for m in range(k)
-        ]
+        (partner: wall index), "box" (partner: 0..3 for x=0, x=width, y=0, y=height) or
+        "thermostat" (partner -1)."""
+        self._drain()
+        return [(float(e["time"]), str(e["kind"]), int(e["disk"]), int(e["partner"]))
+                for batch in self._recorded for e in batch]
 
 
 def _build_model(species, restitution, wall_restitution, tc, rad, vel, mass,

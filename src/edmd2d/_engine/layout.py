@@ -225,6 +225,7 @@ REACHED_COLLISIONS = 1
 REACHED_EVENT_LIMIT = 2
 NO_EVENTS = 3
 NEED_RANDOM = 4  # the random numbers left are too few for the next event: refill
+LOG_FULL = 5  # the event log is full: empty it and call again
 ERR_IMMOVABLE_PAIR = 10
 ERR_IMMOVABLE_WALL = 11
 ERR_STALLED = 12  # inelastic collapse: unboundedly many collisions in no time

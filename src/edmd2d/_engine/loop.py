@@ -36,8 +36,8 @@ The state comes in bundles (tuples of arrays, unpacked at the top of :func:`run`
 ``tallies = (counts, acc, wacc)``
     event counters and accumulated impulses (``layout.C_*``, ``layout.A_*``), and the
     impulses and contacts of each wall segment (``wacc[k]``, ``layout.W_*``);
-``log = (log_t, log_e, log_n)``
-    the event log (capacity ``len(log_t)``);
+``log = (log_t, log_e, log_n, log_j)``
+    the event log (capacity ``len(log_t)``) and each logged event's impulse;
 ``model``
     the physics of the contacts: ``None`` (elastic) or a model's tuple (see
     :mod:`.response`);
@@ -50,11 +50,13 @@ Each combination of model and flight compiles its own ``run``, only when used.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .._jit import kernel, njit
 from . import lookahead, prefetch, queue, response
-from .flight import drift
+from .flight import drift, velocity_at
 from .grid import insert, remove
 from .layout import (
     AUX,
@@ -72,6 +74,7 @@ from .layout import (
     ERR_STALLED,
     KICK,
     KIND,
+    LOG_FULL,
     NEED_RANDOM,
     NO_EVENTS,
     NONE,
@@ -83,6 +86,8 @@ from .layout import (
     REACHED_TIME,
     SEGMENT,
     STAGED,
+    VX,
+    VY,
     X,
     direction_of,
     kind_of,
@@ -129,15 +134,18 @@ def run(t_end, max_collisions, max_events, mode, out, info,
 
     If ``log_t`` has room, every disk-disk, segment, box-wall and thermostat event is
     recorded as ``log_t[k]``, ``log_e[k] = (kind, i, partner)`` (partner -1 for a
-    redraw) with ``log_n[0]`` counting them all; disks are recorded by their user index
-    ``order[i]``.
+    redraw), with its impulse ``log_j[k]`` (the momentum change of a movable disk of the
+    event: ``J`` for a contact), and ``log_n[0]`` counts them; disks are recorded by
+    their user index ``order[i]``.  When the log is full the loop returns ``LOG_FULL``
+    after the event that filled it (the caller empties the log and calls again, so no
+    event is lost); with no log (capacity 0) none of this runs.
     """
     S, E, stamp, nxt, prv, qt, tc, invm, image, order = particles
     gi, gf, head = grid
     wa, wb, wstart, wwall, wsx, wsy = walls
     hv, qhead, qs, qf = calendar
     counts, acc, wacc = tallies
-    log_t, log_e, log_n = log
+    log_t, log_e, log_n, log_j = log
     ncx = gi[0]
     ncy = gi[1]
     log_cap = log_t.shape[0]
@@ -159,6 +167,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
     opened = np.int64(-1)  # the calendar bucket the lookahead last ran for (int64: one
     # compiled lookahead, not a second for the literal)
     qs[queue.FIRST] = -1  # (left by an earlier call: its list may have changed since)
+    pvx = pvy = qvx = qvy = 0.0  # (velocities before an event, for the log's impulse)
     while True:
         if mode == PREDICT_ALL:
             npred = S.shape[0]
@@ -228,6 +237,10 @@ def run(t_end, max_collisions, max_events, mode, out, info,
             redo1 = -1
             direction = -1  # of a cell crossing of i, for a partial prediction
             stale = False
+            if log_cap > 0 and kind != CROSS:
+                pvx, pvy = velocity_at(i, t, S, flight)
+                if kind == DISK:
+                    qvx, qvy = velocity_at(partner, t, S, flight)
 
             if kind == DISK:
                 j = partner
@@ -353,7 +366,18 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                     log_e[k, 2] = order[partner]
                 else:
                     log_e[k, 2] = partner if kind == SEGMENT else aux
+                # The impulse: the momentum change of a movable disk of the event.
+                if invm[i] > 0.0:
+                    log_j[k] = math.hypot(S[i, VX] - pvx, S[i, VY] - pvy) / invm[i]
+                elif kind == DISK:
+                    log_j[k] = math.hypot(S[partner, VX] - qvx,
+                                          S[partner, VY] - qvy) / invm[partner]
+                else:
+                    log_j[k] = 0.0
             log_n[0] = k + 1
+            if k + 1 >= log_cap and n_coll < max_collisions:
+                status = LOG_FULL  # (return for the log to be emptied, then go on)
+                break
         if n_coll >= max_collisions:
             status = REACHED_COLLISIONS
             break

@@ -1,0 +1,98 @@
+"""The event stream: every processed event delivered, in order, without loss, with
+its impulse; no effect on the run; nothing to pay when no one listens."""
+
+from __future__ import annotations
+
+import copy
+import pickle
+
+import numpy as np
+import pytest
+
+import edmd2d as ed
+
+
+def gas():
+    base = ed.make_gas(300, 0.4, periodic=(True, False), seed=6)
+    return ed.Simulation(base.positions, base.velocities, base.radii, box=base.box,
+                         thermostat=(1.0, 0.05), seed=2)
+
+
+def test_every_event_is_streamed_in_order_in_small_batches():
+    sim = gas()
+    batches = []
+    sim.stream_events(batches.append, capacity=37)
+    sim.advance(until=10.0)
+    sim.advance(collisions=500)
+    events = np.concatenate(batches)
+    assert max(len(b) for b in batches) <= 37 and len(batches) > 10
+    assert (np.diff(events["time"]) >= 0).all()
+    kinds = events["kind"].tolist()
+    c = sim.counts
+    assert kinds.count("disk") == c.collisions
+    assert kinds.count("box") == c.wall_collisions
+    assert kinds.count("thermostat") == c.redraws > 0
+    assert events["time"][-1] <= sim.time
+    # The impulses of the box walls add up to the walls' tallies.
+    box = events[events["kind"] == "box"]
+    for side in (2, 3):
+        assert box["impulse"][box["partner"] == side].sum() == pytest.approx(
+            sim._accumulators()["box_impulse"][side], rel=1e-12)
+
+
+def test_impulses_of_a_head_on_collision_and_a_wall_bounce():
+    box = ed.Box(10.0, 10.0, periodic=False)
+    sim = ed.Simulation([[2.0, 5.0], [5.0, 5.0]], [[1.0, 0.0], [-1.0, 0.0]], 1.0,
+                        masses=[2.0, 2.0], box=box)
+    batches = []
+    sim.stream_events(batches.append)
+    sim.advance(until=3.0)
+    events = np.concatenate(batches)
+    assert events[0]["kind"] == "disk" and events[0]["impulse"] == pytest.approx(4.0)
+    assert events[1]["kind"] == "box" and events[1]["impulse"] == pytest.approx(4.0)
+
+
+def test_the_stream_changes_nothing_and_stops():
+    plain, streamed = gas(), gas()
+    seen = []
+    streamed.stream_events(seen.append, capacity=5)
+    plain.advance(until=8.0)
+    streamed.advance(until=8.0)
+    assert np.array_equal(plain.positions, streamed.positions)
+    assert plain.counts == streamed.counts
+    streamed.stream_events(None)
+    n = sum(len(b) for b in seen)
+    streamed.advance(until=10.0)
+    assert sum(len(b) for b in seen) == n
+
+
+def test_copies_and_pickles_do_not_stream():
+    sim = gas()
+    seen = []
+    sim.stream_events(seen.append)
+    sim.advance(until=2.0)
+    for other in (copy.deepcopy(sim), pickle.loads(pickle.dumps(sim))):
+        before = sum(len(b) for b in seen)
+        other.advance(until=4.0)
+        assert sum(len(b) for b in seen) == before
+
+
+def test_a_callback_that_fails_stops_the_run_with_its_error():
+    sim = gas()
+
+    def fail(batch):
+        raise RuntimeError("disk full")
+
+    sim.stream_events(fail, capacity=10)
+    with pytest.raises(RuntimeError, match="disk full"):
+        sim.advance(until=5.0)
+    sim.stream_events(None)
+    sim.advance(until=6.0)  # (the state is consistent: the run goes on)
+
+
+def test_bad_stream_arguments():
+    sim = gas()
+    with pytest.raises(TypeError, match="callable"):
+        sim.stream_events("log.txt")
+    with pytest.raises(ValueError, match="capacity"):
+        sim.stream_events(print, capacity=0)

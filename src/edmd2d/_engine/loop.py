@@ -111,6 +111,28 @@ def _step_cell(c, up, n):
     return c, 0
 
 
+@njit
+def _log_event(k, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm, order,
+               log_t, log_e, log_j):
+    """Write event ``k`` of the log: its time, kind, disks (by user index) or wall, and
+    its impulse, the momentum change of a movable disk of the event (velocities
+    ``pv`` of ``i`` and ``qv`` of a partner disk before it).  (A function of its own:
+    compiled once, not into the loop.)"""
+    log_t[k] = t
+    log_e[k, 0] = kind
+    log_e[k, 1] = order[i]
+    if kind == DISK:
+        log_e[k, 2] = order[partner]
+    else:
+        log_e[k, 2] = partner if kind == SEGMENT else aux
+    if invm[i] > 0.0:
+        log_j[k] = math.hypot(S[i, VX] - pvx, S[i, VY] - pvy) / invm[i]
+    elif kind == DISK:
+        log_j[k] = math.hypot(S[partner, VX] - qvx, S[partner, VY] - qvy) / invm[partner]
+    else:
+        log_j[k] = 0.0
+
+
 @kernel
 def run(t_end, max_collisions, max_events, mode, out, info,
         particles, grid, walls, calendar, tallies, log, model, flight):
@@ -359,21 +381,8 @@ def run(t_end, max_collisions, max_events, mode, out, info,
         if kind != CROSS and log_cap > 0:
             k = log_n[0]
             if k < log_cap:
-                log_t[k] = t
-                log_e[k, 0] = kind
-                log_e[k, 1] = order[i]
-                if kind == DISK:
-                    log_e[k, 2] = order[partner]
-                else:
-                    log_e[k, 2] = partner if kind == SEGMENT else aux
-                # The impulse: the momentum change of a movable disk of the event.
-                if invm[i] > 0.0:
-                    log_j[k] = math.hypot(S[i, VX] - pvx, S[i, VY] - pvy) / invm[i]
-                elif kind == DISK:
-                    log_j[k] = math.hypot(S[partner, VX] - qvx,
-                                          S[partner, VY] - qvy) / invm[partner]
-                else:
-                    log_j[k] = 0.0
+                _log_event(k, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm, order,
+                           log_t, log_e, log_j)
             log_n[0] = k + 1
             if k + 1 >= log_cap and n_coll < max_collisions:
                 status = LOG_FULL  # (return for the log to be emptied, then go on)

@@ -398,3 +398,37 @@ def test_floor_and_ceiling_carry_the_weight_of_the_gas():
     assert floor - ceiling - weight == pytest.approx(p1 - p0, abs=1e-9 * weight)
     assert m.box_wall_pressures[2] * sim.box.width == pytest.approx(
         n * g, abs=abs(p1 - p0) / 200.0 + m.box_wall_pressures[3] * sim.box.width + 1e-9)
+
+
+# ------------------------------------------------------------------ resting on points
+def test_point_contact_at_rest_under_a_pressing_acceleration_is_now():
+    """Touching, no relative velocity, the acceleration pressing the bodies together:
+    the contact is now (not missed: the bodies would pass through each other)."""
+    assert predict.point_time(0.0, -1.0, 0.0, 0.0, 0.0, 1.0, 1.0, math.inf) == 0.0
+    # A rebound too small for rounding to lift the gap above zero comes back at its
+    # turning point, not never.
+    t = predict.point_time(0.0, 1.0, 0.0, 1e-17, 0.0, -1.0, 1.0, math.inf)
+    assert 0.0 < t < 1e-15
+
+
+def test_a_disk_at_rest_on_a_held_disk_stops_with_a_clear_error():
+    """Only box walls hold disks: a disk at rest on a disk held by the floor would
+    bounce at one instant without end.  The run stops with an error that says so;
+    nothing interpenetrates."""
+    sim = ed.Simulation([[5.0, 0.5], [5.0, 1.5]], [[0.0, 0.0], [0.0, 0.0]], 0.5,
+                        box=WALLED, gravity=(0.0, -1.0), restitution=0.5,
+                        wall_restitution=0.5, tc=1e-4)
+    with pytest.raises(RuntimeError, match="only box walls hold disks at rest"):
+        sim.advance(until=3.0)
+    pos = sim.positions
+    assert np.hypot(*(pos[0] - pos[1])) >= 1.0 - 1e-9
+
+
+@pytest.mark.parametrize("peg", [True, False])
+def test_an_elastic_disk_at_rest_on_a_peg_or_a_shelf_is_refused(peg):
+    kwargs = (dict(masses=[np.inf, 1.0]) if peg
+              else dict(walls=[ed.Wall((2.0, 5.0), (8.0, 5.0))]))
+    pos = [[5.0, 4.0], [5.0, 5.0]] if peg else [[1.0, 1.0], [5.0, 5.5]]
+    with pytest.raises(ValueError, match="rests on a wall segment or an immovable disk"):
+        ed.Simulation(pos, [[0.0, 0.0], [0.0, 0.0]], 0.5, box=WALLED,
+                      gravity=(0.0, -1.0), **kwargs)

@@ -243,7 +243,11 @@ def _crossings(coeffs, f, df, noise):
             k += 1
         return (k == len(values) - 1 and c[0] < 0.0) or values[k] < -noise(points[k])
 
-    if values[0] <= 0.0 and df(0.0) < 0.0 and deep(0):
+    # (Touching and closing, or at rest with f'' < 0: pressed together, e.g. a disk at
+    # rest on a peg or on a disk held by the floor.  c[-3] is f''(0) / 2.)
+    slope0 = df(0.0)
+    pressed = slope0 == 0.0 and len(c) >= 3 and c[-3] < 0.0
+    if values[0] <= 0.0 and (slope0 < 0.0 or pressed) and deep(0):
         yield 0.0
     for k in range(len(points) - 1):
         if values[k] > 0.0 and values[k + 1] <= 0.0 and deep(k + 1):
@@ -513,8 +517,10 @@ class ReferenceSimulation:
     noise of two bodies separating) or if ``f``'s following minimum is not below
     zero by more than its rounding error (a tangential touch).
 
-    A resting contact, a disk at rest on a floor with gravity pressing it down, is no
-    event-driven motion: it has no crossing (``f'(0) = 0``) and the disk sinks through.
+    A resting contact, a disk at rest (``f'(0) = 0``) on a fixed point or a disk that
+    it is pressed against (``f''(0) < 0``), is a contact now: it repeats at one
+    instant, which a run with ``tc`` reports as a collapse.  (A disk at rest on a box
+    wall is held there by an inelastic model, see ``resting``.)
     The periodic look-ahead window accounts for the acceleration: a disk moves at most
     ``|v| h + |g| h^2 / 2`` in a time ``h``.
 
@@ -899,8 +905,7 @@ class ReferenceSimulation:
             self._heat(i, wall, n)
             self.t_last[i] = self.time
             self.wall_collisions += 1
-            if kind != "box":
-                self._release(i)
+            self._release(i)  # (a heated wall never holds a disk, and frees one it hits)
             return
         if kind == "box":
             axis = partner // 2

@@ -85,8 +85,9 @@ class Simulation:
 
     Disks move on straight lines between collisions (on parabolas under ``gravity``).
     Every disk-disk and disk-wall contact is found at its exact time from a quadratic
-    equation (a quartic, bracketed, for a falling disk against a fixed point), with no
-    time step, so no collision is missed at any speed or over any interval.
+    equation (a quartic, bracketed, for two bodies of different accelerations: a
+    falling disk against a fixed point or a disk resting on a box wall), with no time
+    step, so no collision is missed at any speed or over any interval.
 
     Parameters
     ----------
@@ -398,7 +399,39 @@ class Simulation:
                 )
             side = 2 * axis + (0 if g[axis] < 0.0 else 1)
             bits[resting] |= 1 << side
+        if model is None:
+            self._check_not_resting_on_obstacles(pos, vel, rad, movable, g)
         return bits
+
+    def _check_not_resting_on_obstacles(self, pos, vel, rad, movable, g) -> None:
+        """Elastic disks under gravity: none may start at rest (no velocity along the
+        contact normal) on a wall segment or an immovable disk that gravity presses it
+        into; it would bounce without end at one instant.  (Only disks with a zero
+        velocity component can, so only they are checked.)"""
+        still = np.flatnonzero(movable & ((vel[:, 0] == 0.0) | (vel[:, 1] == 0.0)))
+        if len(still) == 0:
+            return
+        pegs = np.flatnonzero(~movable)
+        for i in still:
+            normals = []
+            for w in self._walls:
+                a, b = np.array(w.start), np.array(w.end)
+                u = b - a
+                s = np.clip((pos[i] - a) @ u / (u @ u), 0.0, 1.0)
+                d = pos[i] - (a + s * u)
+                normals.append((d, rad[i]))
+            for j in pegs:
+                normals.append((pos[i] - pos[j], rad[i] + rad[j]))
+            for d, contact in normals:
+                dist = float(np.hypot(*d))
+                if (dist <= contact * (1.0 + _OVERLAP_TOL) and float(vel[i] @ d) == 0.0
+                        and float(g @ d) < 0.0):
+                    raise ValueError(
+                        f"positions: disk {i} rests on a wall segment or an immovable "
+                        "disk with no velocity along the contact while gravity presses "
+                        "it on, which would take unboundedly many bounces at one "
+                        "instant: lift it by a small gap or give it a velocity (only "
+                        "box walls hold disks at rest)")
 
     def _check_walls_in_box(self) -> None:
         w, h = self._box.width, self._box.height
@@ -774,7 +807,11 @@ class Simulation:
             partner = f"disk {int(self._order[j])}" if kind == _layout.DISK else where
             streak = self._model.streak
             involved = np.sort(self._order[streak >= streak.max() // 10])
-            if self._model.tc > 0.0:
+            if self._gravity is not None:
+                advice = ("Under gravity this is a disk at rest on another disk, a peg or "
+                          "a segment, which no tc ends: only box walls hold disks at "
+                          "rest (see docs/gravity-and-heat.md).")
+            elif self._model.tc > 0.0:
                 advice = (f"The TC model (tc={self._model.tc}) did not end it: a larger tc "
                           "would, unless the disks are confined with no room to move.")
             else:

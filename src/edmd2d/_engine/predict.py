@@ -265,7 +265,10 @@ def point_time(px, py, vx, vy, ax, ay, d, horizon):
     """
     d2 = d * d
     f0, s0 = _gap(0.0, px, py, vx, vy, ax, ay, d2)
-    if f0 <= 0.0 and s0 < 0.0:
+    # Touching (to rounding) and closing now, or at rest with the acceleration pressing
+    # the bodies together (s = 0, s' = v.v + p.a < 0): in contact now.
+    if f0 <= 0.0 and (s0 < 0.0 or (s0 == 0.0 and vx * vx + vy * vy + px * ax + py * ay
+                                    < 0.0)):
         return 0.0
     aa = ax * ax + ay * ay
     amag = math.sqrt(aa)
@@ -317,10 +320,19 @@ def point_time(px, py, vx, vy, ax, ay, d, horizon):
 @njit
 def _fall(lo, hi, flo, px, py, vx, vy, ax, ay, d2):
     """On ``[lo, hi]``, where ``f`` is monotone and ``f(lo) = flo``: the time at which
-    ``f`` falls through zero, bisected to the last bit (its end with ``f <= 0``), or
-    ``inf``; and ``f(hi)``."""
+    ``f`` falls through zero, bisected to the last bit, or ``inf``; and ``f(hi)``.
+
+    Of the two adjacent floats around the root the one where ``|f|`` is smaller is
+    returned (the nearest): always taking the side with ``f <= 0`` would leave every
+    contact a rounding too deep, and a disk bouncing on a point for ever (elastic
+    under the TC rule) would sink by that much at each bounce.  An interval that
+    starts at or below zero and falls is a rebound that rounding never lifted clear of
+    contact (as ``descend_time``'s turning point): the contact comes back at its
+    start, the turning point."""
     fhi = _gap(hi, px, py, vx, vy, ax, ay, d2)[0]
-    if not (flo > 0.0 and fhi <= 0.0):
+    if flo <= 0.0:
+        return (lo, fhi) if fhi < flo else (INF, fhi)
+    if fhi > 0.0:
         return INF, fhi
     for _ in range(2200):
         mid = 0.5 * (lo + hi)
@@ -330,7 +342,9 @@ def _fall(lo, hi, flo, px, py, vx, vy, ax, ay, d2):
             lo = mid
         else:
             hi = mid
-    return hi, fhi
+    f_lo = _gap(lo, px, py, vx, vy, ax, ay, d2)[0]
+    f_hi = _gap(hi, px, py, vx, vy, ax, ay, d2)[0]
+    return (lo if f_lo < -f_hi else hi), fhi
 
 
 @njit

@@ -191,6 +191,8 @@ CHANNEL = ed.Box(10.0, 10.0, periodic=(True, False))
     (dict(wall_temperatures={0: 1.0}), ValueError, "there are 0 wall segments"),
     (dict(wall_temperatures={1.5: 1.0}), TypeError, "a box wall's name or a segment index"),
     (dict(wall_temperatures=[("bottom", 1.0)]), TypeError, "must be a dict"),
+    (dict(wall_temperatures={"bottom": 1.0, "y=0": 2.0}), ValueError,
+     "given a temperature already"),
 ])
 def test_bad_thermostat_and_heated_walls_are_refused_by_name(kwargs, error, match):
     kwargs = dict(kwargs)

@@ -137,7 +137,7 @@ class Model:
         if rate > 0.0:
             # (Every draw comes from the one stream of uniforms u: the first waiting
             # time is -ln(1 - u) / rate, as the engine draws the next ones.)
-            self.thermo[2] = time - math.log(1.0 - self.rng.random()) / self.thermo[1]
+            self.thermo[2] = time - math.log(1.0 - self.rng.random()) / float(self.thermo[1])
         self.refill()
 
     def refill(self) -> None:

@@ -1325,6 +1325,9 @@ def _wall_temperatures(value, box: Box, n_segments: int):
         t = float(as_float_array(label, temperature, ()))
         if not t > 0.0:
             raise ValueError(f"{label} must be a temperature kT > 0, got {t}")
+        if kt[k] > 0.0:
+            raise ValueError(f"{label}: that wall was given a temperature already "
+                             "(under another of its names)")
         kt[k] = t
     return kt
 

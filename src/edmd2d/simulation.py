@@ -366,7 +366,7 @@ class Simulation:
                 )
 
     def _resting(self, pos: np.ndarray, vel: np.ndarray, rad: np.ndarray,
-                 mass: np.ndarray, model) -> np.ndarray:
+                 mass: np.ndarray, model, what: str = "positions") -> np.ndarray:
         """Under gravity, the box walls each movable disk rests on (bits ``1 << side``,
         see ``layout.S_SUPPORT``): it touches the wall, with zero normal velocity, and
         gravity presses it into the wall.  An inelastic model with ``tc > 0`` holds such
@@ -391,7 +391,7 @@ class Simulation:
                 name = "xy"[axis]
                 wall = f"{name}=0" if g[axis] < 0.0 else f"{name}={length}"
                 raise ValueError(
-                    f"positions: disks {indices_where(resting)} rest on the box wall at "
+                    f"{what}: disks {indices_where(resting)} rest on the box wall at "
                     f"{wall} with zero {name}-velocity while gravity presses them into "
                     "it, which would take unboundedly many bounces at one instant: "
                     "lift them by a small gap, give them a velocity, or make them "
@@ -400,10 +400,10 @@ class Simulation:
             side = 2 * axis + (0 if g[axis] < 0.0 else 1)
             bits[resting] |= 1 << side
         if model is None:
-            self._check_not_resting_on_obstacles(pos, vel, rad, movable, g)
+            self._check_not_resting_on_obstacles(pos, vel, rad, movable, g, what)
         return bits
 
-    def _check_not_resting_on_obstacles(self, pos, vel, rad, movable, g) -> None:
+    def _check_not_resting_on_obstacles(self, pos, vel, rad, movable, g, what) -> None:
         """Elastic disks under gravity: none may start at rest (no velocity along the
         contact normal) on a wall segment or an immovable disk that gravity presses it
         into; it would bounce without end at one instant.  (Only disks with a zero
@@ -427,7 +427,7 @@ class Simulation:
                 if (dist <= contact * (1.0 + _OVERLAP_TOL) and float(vel[i] @ d) == 0.0
                         and float(g @ d) < 0.0):
                     raise ValueError(
-                        f"positions: disk {i} rests on a wall segment or an immovable "
+                        f"{what}: disk {i} rests on a wall segment or an immovable "
                         "disk with no velocity along the contact while gravity presses "
                         "it on, which would take unboundedly many bounces at one "
                         "instant: lift it by a small gap or give it a velocity (only "
@@ -1132,7 +1132,8 @@ class Simulation:
         """
         vel = as_float_array("velocities", velocities, (len(self), 2))
         self._check_room(vel, self.radii)
-        rest = self._resting(self.positions, vel, self.radii, self.masses, self._model)
+        rest = self._resting(self.positions, vel, self.radii, self.masses, self._model,
+                             "velocities")
         self._sync_all()
         self._S[:, _layout.VX:_layout.VY + 1] = vel[self._order]
         _layout.support_view(self._S)[:] = rest[self._order]

@@ -7,7 +7,7 @@
 1
 """
 
-from . import checkpoint, models, theory
+from . import checkpoint, models, operations, theory
 from .analysis import (
     hexatic_order,
     maxwell_boltzmann_test,
@@ -26,7 +26,7 @@ __all__ = [
     "measure", "Measurement", "kinetic_temperature", "cooling", "Cooling", "models",
     "radial_distribution", "speed_distribution", "maxwell_boltzmann_test",
     "trajectory", "mean_squared_displacement", "hexatic_order",
-    "theory", "checkpoint",
+    "theory", "checkpoint", "operations",
 ]
 __version__ = "0.1.0"
 

@@ -64,6 +64,8 @@ def circle_contact_time(p, v, d):
     if vp >= 0:  # not approaching: no collision
         return INF
     vv = _dot(v, v)
+    if vv == 0.0:  # (a speed whose square underflows: no contact in any finite time)
+        return INF
     disc = vp * vp - vv * (_dot(p, p) - d * d)
     if disc <= 0:  # miss, or a touch without momentum exchange
         return INF

@@ -754,6 +754,40 @@ class Simulation:
             if self._since_reorder >= self._reorder_every:
                 self._reorder()
 
+    def run(self, until: float | None = None, collisions: int | None = None,
+            operations=(), progress=False) -> Simulation:
+        """Advance like :meth:`advance`, firing ``operations`` on the way, each when
+        its trigger says (see :mod:`edmd2d.operations`).
+
+        Parameters
+        ----------
+        until, collisions
+            As for :meth:`advance`.
+        operations : sequence of edmd2d.operations.Operation
+        progress : bool, default False
+            A progress bar over the run.
+
+        Returns
+        -------
+        Simulation
+            ``self``.
+
+        Examples
+        --------
+        >>> import edmd2d as ed
+        >>> from edmd2d.operations import Callback, Every
+        >>> sim = ed.make_gas(100, 0.3, seed=1)
+        >>> energies = []
+        >>> _ = sim.run(until=3.0, operations=[
+        ...     Callback(lambda s: energies.append(s.kinetic_energy()), Every(dt=1.0))])
+        >>> len(energies)
+        3
+        """
+        from . import operations as _operations
+
+        return _operations.run(self, until=until, collisions=collisions,
+                               operations=operations, progress=progress)
+
     def _check_clock_resolves_crossings(self, t_end: float) -> None:
         """Refuse a run to ``t_end`` at whose end the float64 clock could no longer
         tell a disk's successive cell crossings apart (they are events: the clock would

@@ -96,3 +96,20 @@ def test_bad_stream_arguments():
         sim.stream_events("log.txt")
     with pytest.raises(ValueError, match="capacity"):
         sim.stream_events(print, capacity=0)
+
+
+def test_events_written_to_a_file_read_back_exactly(tmp_path):
+    from edmd2d.io.events import EventWriter, read
+
+    sim = gas()
+    batches = []
+    path = tmp_path / "events.csv"
+    with EventWriter(path) as out:
+        sim.stream_events(lambda b: (batches.append(b), out(b)), capacity=64)
+        sim.advance(until=5.0)
+        sim.stream_events(None)
+    events = read(path)
+    assert np.array_equal(events, np.concatenate(batches))
+    (tmp_path / "other.csv").write_text("a,b\n1,2\n")
+    with pytest.raises(ValueError, match="not an edmd2d event file"):
+        read(tmp_path / "other.csv")

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import random_system
+from conftest import overlaps, random_system
 from edmd2d.reference import ReferenceSimulation
 
 BOX_KINDS = [(True, True), (False, False), (True, False), (False, True)]
@@ -149,3 +149,26 @@ def test_same_events_with_thermostat_and_heated_walls_as_reference(seed, periodi
     assert sim.counts.redraws == ref.redraws > 0
     np.testing.assert_allclose(sim.wall_heat(), ref.wall_heat, rtol=1e-9, atol=1e-12)
     assert sim.thermostat_energy() == pytest.approx(ref.thermostat_energy, rel=1e-9)
+
+
+GROWTH_CASES = [(seed, BOX_KINDS[seed % 4], ("none", "divider", "polygon")[seed % 3],
+                 (0.04, 0.12)[seed % 2]) for seed in range(24)]
+
+
+@pytest.mark.parametrize("seed, periodic, walls_kind, rate", GROWTH_CASES)
+def test_same_events_with_growing_disks_as_reference(seed, periodic, walls_kind, rate):
+    """Radii growing linearly in time: the contact distance grows too (quadratics of
+    either curvature), rims close on walls and segments at the growth speed, and the
+    impulse reverses the closing rate; grids rebuilt as the disks outgrow their cells.
+    The same events and final states as the oracle's textbook roots, and no overlap."""
+    box, walls, (pos, vel, rad, mass) = _system(1300 + seed, periodic, walls_kind, 4, 3.0, 8)
+    sim = ed.Simulation(pos, vel, rad, mass, box=box, walls=walls, growth=rate)
+    sim._record_events(10_000)
+    ref = ReferenceSimulation(pos, vel, rad, mass, box=box, walls=walls, growth=rate)
+    t_end = 1.0
+    sim.advance(until=t_end)
+    ref.advance(until=t_end)
+    _assert_same_run(sim, ref, box)
+    np.testing.assert_allclose(sim.radii, ref.r, rtol=1e-15)
+    np.testing.assert_allclose(sim.radii, rad * (1.0 + rate * t_end), rtol=1e-15)
+    assert len(overlaps(sim)) == 0

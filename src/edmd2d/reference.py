@@ -73,11 +73,45 @@ def circle_contact_time(p, v, d):
     return max(t, 0.0)  # already touching and approaching: now
 
 
-def segment_contact_time(p, v, r, a, b):
+def circle_contact_time_growing(p, v, d, dd):
+    """Earliest t >= 0 with |p + t v| = d + dd t, the distance closing there, else inf:
+    the contact of two circles whose radii grow at speeds adding up to ``dd``.
+
+    The square of the condition is the quadratic ``A t^2 + 2 B t + C = 0`` with
+    ``A = v.v - dd^2``, ``B = v.p - d dd``, ``C = p.p - d^2``.  Where the gap closes
+    the quadratic falls through zero: the smaller root if ``A > 0``, the larger if
+    ``A < 0`` (then it opens upwards between them), ``-C / 2B`` if ``A = 0``.  Written
+    as the textbook roots.  Overlapping already (``C <= 0``, by rounding) while the
+    gap closes, or with no root at all: now.
+    """
+    a = _dot(v, v) - dd * dd
+    b = _dot(v, p) - d * dd
+    c = _dot(p, p) - d * d
+    if c <= 0.0 and b < 0.0:
+        return 0.0
+    if a == 0.0:
+        return -c / (2.0 * b) if b < 0.0 else INF
+    disc = b * b - a * c
+    if disc < 0.0:
+        return 0.0 if c < 0.0 else INF  # (a < 0: overlapping for good; a > 0: a miss)
+    if a > 0.0 and (b >= 0.0 or disc == 0.0):
+        return INF  # moving apart, or a touch without momentum exchange
+    # The smaller root for a > 0, the larger for a < 0: the same expression.
+    return max((-b - math.sqrt(disc)) / a, 0.0)
+
+
+def segment_contact_time(p, v, r, a, b, dr=None):
     """Earliest contact of a circle (p, v, r) with the segment a-b: its side or an end point.
 
-    Returns (t, part) with part "side", "start" or "end"; (inf, None) if none.
+    Returns (t, part) with part "side", "start" or "end"; (inf, None) if none.  With
+    ``dr`` the circle's radius grows at that speed.
     """
+    if dr is None:
+        def contact(q, w, d):
+            return circle_contact_time(q, w, d)
+    else:
+        def contact(q, w, d):
+            return circle_contact_time_growing(q, w, d, dr)
     u = (b[0] - a[0], b[1] - a[1])
     uu = _dot(u, u)
     rel = (p[0] - a[0], p[1] - a[1])
@@ -87,13 +121,13 @@ def segment_contact_time(p, v, r, a, b):
     k = _dot(v, u) / uu
     vt = (v[0] - k * u[0], v[1] - k * u[1])
     best, part = INF, None
-    t = circle_contact_time(pt, vt, r)
+    t = contact(pt, vt, r)
     if t < INF:
         s = q + t * k  # where along the wall the contact happens
         if 0.0 <= s <= 1.0:
             best, part = t, "side"
     for name, e in (("start", a), ("end", b)):
-        t = circle_contact_time((p[0] - e[0], p[1] - e[1]), v, r)
+        t = contact((p[0] - e[0], p[1] - e[1]), v, r)
         if t < best:
             best, part = t, name
     return best, part
@@ -458,6 +492,11 @@ class ReferenceSimulation:
         and a Gaussian.  A Gaussian takes two: ``sqrt(-2 ln(1 - u1)) cos(2 pi u2)``.
         These are the engine's draws, in the engine's order, so that a seed gives
         the same run in both.
+    growth : float, optional
+        Growing radii: ``r_i(t) = r_i (1 + growth (t - time))`` (straight flight,
+        elastic).  A contact reverses the rate ``dd - vn`` at which the gap closes
+        (``vn`` the normal relative velocity, ``dd`` the growth speed of the contact
+        distance): ``vn' = 2 dd - vn``, elastic in the frame of the growing rims.
 
     Attributes
     ----------
@@ -556,7 +595,7 @@ class ReferenceSimulation:
     def __init__(self, positions, velocities, radii, masses=1.0, box: Box | None = None,
                  walls=(), *, time=0.0, species=None, restitution=1.0,
                  wall_restitution=1.0, tc=0.0, gravity=(0.0, 0.0),
-                 wall_temperatures=None, thermostat=None, seed=None):
+                 wall_temperatures=None, thermostat=None, seed=None, growth=None):
         n = len(positions)
         self.box = box
         self.walls = [w if isinstance(w, Wall) else Wall(*w) for w in walls]
@@ -565,6 +604,12 @@ class ReferenceSimulation:
         self.r = _per_disk(radii, n)
         self.m = _per_disk(masses, n)
         self.time = float(time)
+        # Growth: each radius grows at its own constant speed dr[k] = growth r0[k] from
+        # the radii r0 at time t_grow; self.r always holds the radii now.
+        self.growth = None if not growth else float(growth)
+        self.r0 = list(self.r)
+        self.t_grow = self.time
+        self.dr = [0.0 if self.growth is None else self.growth * r for r in self.r0]
         self.events: list[tuple[float, str, int, int]] = []
         self.collisions = 0
         self.wall_collisions = 0
@@ -717,20 +762,37 @@ class ReferenceSimulation:
                 dv = (self.v[i][0] - self.v[j][0], self.v[i][1] - self.v[j][1])
                 for sx, sy in shifts:
                     dp = (self.p[i][0] - self.p[j][0] - sx, self.p[i][1] - self.p[j][1] - sy)
-                    t = circle_contact_time(dp, dv, self.r[i] + self.r[j])
+                    if self.growth is None:
+                        t = circle_contact_time(dp, dv, self.r[i] + self.r[j])
+                    else:
+                        t = circle_contact_time_growing(dp, dv, self.r[i] + self.r[j],
+                                                        self.dr[i] + self.dr[j])
                     if t < best[0]:
                         best = (t, "disk", i, j, (sx, sy))
             for k, wall in enumerate(self.walls):
                 for sx, sy in shifts:
                     a = (wall.start[0] + sx, wall.start[1] + sy)
                     b = (wall.end[0] + sx, wall.end[1] + sy)
-                    t, part = segment_contact_time(self.p[i], self.v[i], self.r[i], a, b)
+                    t, part = segment_contact_time(self.p[i], self.v[i], self.r[i], a, b,
+                                                   None if self.growth is None
+                                                   else self.dr[i])
                     if t < best[0]:
                         best = (t, "wall", i, k, (part, a, b))
             for axis, length in enumerate((self.box.width, self.box.height)):
                 if self.box.periodic[axis]:
                     continue
                 x, vx, r = self.p[i][axis], self.v[i][axis], self.r[i]
+                if self.growth is not None:
+                    # The rim grows towards both walls: the gaps x - r and
+                    # length - r - x close at dr - vx and dr + vx.
+                    dr = self.dr[i]
+                    for t, side in ((max((x - r) / (dr - vx), 0.0) if dr - vx > 0 else INF,
+                                     2 * axis),
+                                    (max((length - r - x) / (dr + vx), 0.0)
+                                     if dr + vx > 0 else INF, 2 * axis + 1)):
+                        if t < best[0]:
+                            best = (t, "box", i, side, None)
+                    continue
                 if vx < 0:
                     t, side = max((x - r) / -vx, 0.0), 2 * axis
                 elif vx > 0:
@@ -820,6 +882,9 @@ class ReferenceSimulation:
         if not self._accelerated():
             self.p = [[p[0] + dt * v[0], p[1] + dt * v[1]] for p, v in zip(self.p, self.v)]
             self.time += dt
+            if self.growth is not None:
+                f = 1.0 + self.growth * (self.time - self.t_grow)
+                self.r = [r * f for r in self.r0]
             return
         acc = [self._acceleration(k) for k in range(len(self.p))]
         self.p = [list(_at(p, v, a, dt)) for p, v, a in zip(self.p, self.v, acc)]
@@ -862,6 +927,10 @@ class ReferenceSimulation:
             norm = math.sqrt(_dot(d, d))
             n = (d[0] / norm, d[1] / norm)
             vn = (v[0] - self.v[j][0]) * n[0] + (v[1] - self.v[j][1]) * n[1]
+            if self.growth is not None:
+                # The gap closes at dd - vn: the rate the collision reverses (vn' - dd =
+                # dd - vn); rounding may leave a contact not closing: nothing changes.
+                vn = min(vn - (self.dr[i] + self.dr[j]), 0.0)
             e = self._pair_restitution(i, j)
             # Impulse along n: v_i' = v_i - (1+e) m_j/(m_i+m_j) vn n, and the opposite
             # for j, so that vn becomes -e vn.  For e = 1, 1 + e is exactly 2.0: the
@@ -909,6 +978,14 @@ class ReferenceSimulation:
             self.wall_collisions += 1
             self._release(i)  # (a heated wall never holds a disk, and frees one it hits)
             return
+        if kind == "box" and self.growth is not None:
+            # The rim moves towards the wall at dr: v' reverses the closing rate.
+            axis = partner // 2
+            inward = 1.0 if partner % 2 == 0 else -1.0
+            closing = min(v[axis] * inward - self.dr[i], 0.0)
+            v[axis] -= 2.0 * closing * inward
+            self.wall_collisions += 1
+            return
         if kind == "box":
             axis = partner // 2
             vn = v[axis]
@@ -935,6 +1012,13 @@ class ReferenceSimulation:
             norm = math.sqrt(_dot(n, n))
             n = (n[0] / norm, n[1] / norm)
             vn = _dot(v, n)
+            if self.growth is not None:
+                # (n points to the disk's side for an end point; for a side, the sign
+                # of n drops out of vn n, but not of the growth term.)
+                if part == "side" and _dot(n, (p[0] - a[0], p[1] - a[1])) < 0.0:
+                    n = (-n[0], -n[1])
+                    vn = -vn
+                vn = min(vn - self.dr[i], 0.0)
             k = 1.0 + e  # exactly 2.0 for e = 1, as in the elastic reflection
             self.v[i] = [v[0] - k * vn * n[0], v[1] - k * vn * n[1]]
             self._release(i)

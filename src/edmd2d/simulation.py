@@ -40,6 +40,9 @@ _PROGRESS_EVENTS = 1 << 16
 # then sit near in memory, which matters once the state no longer fits in the caches.
 _REORDER_MIN_DISKS = 1024
 _REORDER_EVENTS_PER_DISK = 20
+# Under growth the grid is built for a largest diameter this much above the current one,
+# and rebuilt when the disks reach it (an O(N) rebuild every 10% of growth).
+_GROWTH_GRID_SLACK = 1.1
 
 _KIND_NAMES = {_layout.DISK: "disk", _layout.SEGMENT: "wall", _layout.BOX: "box",
                _layout.KICK: "thermostat"}
@@ -157,6 +160,15 @@ class Simulation:
     seed : int or numpy.random.Generator, optional
         The random numbers of heated walls and the thermostat: a run is reproducible
         from its seed (and continues the same stream after copies and pickles).
+    growth : float, optional
+        Growing disks (``>= 0``, per unit time): every radius grows linearly in time at
+        ``growth`` times its value at ``time``, ``r_i(t) = r_i (1 + growth (t - time))``,
+        so a mixture keeps its size ratios (the Lubachevsky-Stillinger compression;
+        :func:`edmd2d.compress` drives it to a packing fraction or to jamming).  A
+        contact then reverses the rate at which the gap closed, which adds kinetic
+        energy (the work of the compression).  For elastic disks in free flight
+        (no ``gravity``, restitution, heated walls or thermostat).  See
+        :meth:`set_growth`.
 
     Raises
     ------
@@ -207,6 +219,7 @@ class Simulation:
         wall_temperatures=None,
         thermostat=None,
         seed=None,
+        growth=None,
     ) -> None:
         if box is None:
             raise TypeError("box is required: pass box=edmd2d.Box(width, height, periodic=...)")
@@ -228,6 +241,7 @@ class Simulation:
         self._box = box
         self._walls = tuple(wall_list)
         self._gravity = _as_gravity(gravity)
+        growth = _as_growth(growth)
         pos = self._check_in_box(pos, rad)
         self._check_walls_in_box()
         self._check_room(vel, rad)
@@ -249,6 +263,8 @@ class Simulation:
         model = _build_model(species, restitution, wall_restitution, tc, rad, vel, mass,
                              _wall_temperatures(wall_temperatures, box, len(wall_list)),
                              _thermostat(thermostat), seed, float(t0))
+        if growth is not None:
+            _check_growth_physics(model[1], self._gravity)
 
         # Per-disk state and bookkeeping, one 64-byte row each in S and E (see
         # _engine/layout.py for the columns).
@@ -278,7 +294,8 @@ class Simulation:
         # Each segment's impulses and contacts (layout.W_*), summed by the engine.
         self._wacc = np.zeros((len(wall_list), _layout.N_WACC))
         self._cell_size = cell_size
-        self._build_grid(pos, dmax, cell_size)
+        self._growth = None if growth is None else np.array([growth, float(t0)])
+        self._build_grid(pos, self._grid_diameter(dmax), cell_size)
         self._check_overlaps(pos, rad)
         _layout.support_view(state)[:] = self._resting(pos, vel, rad, mass, model[1])
 
@@ -305,7 +322,11 @@ class Simulation:
         lists and the wall segments listed per cell.  Cells are at least ``dmax`` wide
         (``cell_size``, if given, is at least that); the default widens them in dilute
         systems to keep at most about two cells per disk.  The kept candidates and the
-        queue are not touched: predict every disk afresh after a rebuild."""
+        queue are not touched: predict every disk afresh after a rebuild.
+
+        Under growth the grid holds until the largest diameter reaches ``dmax``
+        (:meth:`_grid_limit`)."""
+        self._grid_dmax = float(dmax)
         width, height = self._box.width, self._box.height
         side_min = dmax * (1.0 + _CELL_MARGIN)
         if cell_size is None:
@@ -324,6 +345,84 @@ class Simulation:
         self._wstart, self._wwall, self._wsx, self._wsy = _grid.bucket_walls(
             self._wa, self._wb, self._gi, self._gf, reach
         )
+
+    # ------------------------------------------------------------------ growth
+    def _growth_factor(self, t: float) -> float:
+        """The factor by which every radius at ``t`` exceeds its stored value (1 without
+        growth; the engine's ``scan.growth_factor``)."""
+        if self._growth is None:
+            return 1.0
+        return 1.0 + float(self._growth[0]) * (t - float(self._growth[1]))
+
+    def _grid_diameter(self, dmax: float) -> float:
+        """The largest diameter to build the grid for, the current one being ``dmax``:
+        that one, or under growth a margin above it (but within the box)."""
+        if self._growth is None:
+            return dmax
+        return min(dmax * _GROWTH_GRID_SLACK, max(dmax, self._outgrow_diameter()))
+
+    def _outgrow_diameter(self) -> float:
+        """The largest diameter the box holds: a disk that wide would overlap its own
+        periodic image, or fill the box between its walls."""
+        return min(self._box.width, self._box.height) * (1.0 - _OVERLAP_TOL)
+
+    def _time_of_diameter(self, diameter: float) -> float:
+        """Under growth, the time at which the largest diameter reaches ``diameter``."""
+        rate, t0 = float(self._growth[0]), float(self._growth[1])
+        d0 = 2.0 * float(self._S[:, _layout.R].max())
+        return t0 + (diameter / d0 - 1.0) / rate if rate > 0.0 else math.inf
+
+    def _regrid(self) -> None:
+        """Under growth, once the largest diameter has reached the one the grid was
+        built for: bring every disk to the current time, rebuild the grid for the
+        disks' growth ahead and predict every disk afresh."""
+        self._sync_all()
+        dmax = 2.0 * float(self._S[:, _layout.R].max()) * self._growth_factor(self._time)
+        self._build_grid(self._S[:, _layout.X:_layout.Y + 1], self._grid_diameter(dmax),
+                         self._cell_size)
+        self._predict_all()
+
+    @property
+    def growth(self) -> float | None:
+        """The growth rate of the radii (see :meth:`set_growth`), ``None`` if they are
+        fixed."""
+        return None if self._growth is None else float(self._growth[0])
+
+    def set_growth(self, rate: float | None) -> None:
+        """Let every radius grow linearly in time from now on, or stop it growing.
+
+        Parameters
+        ----------
+        rate : float or None
+            ``>= 0`` per unit time: each radius grows at ``rate`` times its present
+            value, ``r_i(t) = r_i(now) (1 + rate (t - now))``.  ``None`` (or 0) keeps
+            the radii fixed at their present values.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For a rate that is negative or not finite, or a simulation whose physics
+            growth does not combine with (gravity, restitution below 1, heated walls
+            or a thermostat); the simulation is left unchanged.
+
+        Notes
+        -----
+        The contacts of growing disks reverse the rate at which their gap closed,
+        so that they part, which heats the system: rescale the temperature at
+        intervals (:meth:`rescale_temperature`), as :func:`edmd2d.compress` does.
+        The grid is rebuilt whenever the disks have grown by 10%; a run that would
+        take the largest disk past the size of the box is refused.
+        """
+        rate = _as_growth(rate)
+        if rate is not None:
+            _check_growth_physics(self._model, self._gravity)
+        radii = self._S[:, _layout.R] * self._growth_factor(self._time)
+        self._S[:, _layout.R] = radii
+        self._growth = None if rate is None else np.array([rate, self._time])
+        if rate is None:
+            self._predict_all()
+        else:
+            self._regrid()  # (a grid with room to grow)
 
     # ------------------------------------------------------------------ validation
     def _check_in_box(self, pos: np.ndarray, rad: np.ndarray) -> np.ndarray:
@@ -526,6 +625,8 @@ class Simulation:
         state.setdefault("_species", None)
         state.setdefault("_cell_size", None)
         state.setdefault("_gravity", None)
+        state.setdefault("_growth", None)
+        state.setdefault("_grid_dmax", 2.0 * float(state["_S"][:, _layout.R].max()))
         state.setdefault("_log_j", np.zeros(len(state.get("_log_t", ()))))
         state.setdefault("_listener", None)
         acc = state["_acc"]
@@ -562,6 +663,8 @@ class Simulation:
             (self._log_t, self._log_e, self._log_n, self._log_j),
             None if self._model is None else self._model.engine_params(),
             self._flight(),
+            None if self._growth is None else (float(self._growth[0]),
+                                               float(self._growth[1])),
         )
 
     def _flight(self):
@@ -682,6 +785,15 @@ class Simulation:
                 return self
 
         self._check_clock_resolves_crossings(t_end)
+        outgrown = math.inf
+        if self._growth is not None:
+            outgrown = self._time_of_diameter(self._outgrow_diameter())
+            if t_end > outgrown and until is not None:
+                raise ValueError(
+                    f"until={t_end} is past t={outgrown:.17g}, when the largest disk "
+                    f"grows as wide as the box ({min(self._box.size):.6g}); the "
+                    f"simulation is left at t={self._time}")
+            t_end = min(t_end, outgrown)
         by_time = until is not None
         bar, owned = _progress.bar(
             progress, total=(t_end - self._time) if by_time else max_coll,
@@ -702,6 +814,12 @@ class Simulation:
             return self
         if status == _layout.REACHED_COLLISIONS:
             return self
+        if status in (_layout.REACHED_TIME, _layout.NO_EVENTS) and t_end == outgrown:
+            self._time = t_end
+            raise RuntimeError(
+                f"the largest disk grew as wide as the box at t={t_end} before "
+                f"{remaining} of the {max_coll} requested collisions; the simulation "
+                f"stands at that time")
         if status == _layout.NO_EVENTS:
             raise RuntimeError(
                 f"no further event can ever happen (t={self._time}): "
@@ -724,8 +842,11 @@ class Simulation:
             events_before = self.counts.events
             shown = self._time
             budget = min(chunk, self._reorder_every - self._since_reorder)
+            t_run = t_end  # (under growth: no later than the grid holds)
+            if self._growth is not None:
+                t_run = min(t_end, self._time_of_diameter(self._grid_dmax))
             try:
-                status = self._run(t_end, remaining, budget, out, info, _layout.RUN_EVENTS)
+                status = self._run(t_run, remaining, budget, out, info, _layout.RUN_EVENTS)
             finally:
                 # Also when Ctrl-C arrives as the engine returns: the clock must follow
                 # the events the engine has processed, or positions would be read at a
@@ -747,6 +868,12 @@ class Simulation:
                 continue
             if status == _layout.LOG_FULL:
                 self._drain()
+                continue
+            if t_run < t_end and status in (_layout.REACHED_TIME, _layout.NO_EVENTS):
+                # The disks have grown as large as the grid's cells allow: rebuild it.
+                self._time = t_run
+                out[0] = t_run
+                self._regrid()
                 continue
             if status != _layout.REACHED_EVENT_LIMIT:
                 # (No reordering here: an error below names disks by internal index.)
@@ -917,8 +1044,9 @@ class Simulation:
 
     @property
     def radii(self) -> np.ndarray:
-        """Disk radii, shape (N,), a copy."""
-        return self._to_user(self._S[:, _layout.R])
+        """Disk radii at :attr:`time`, shape (N,), a copy (they change in time under
+        :attr:`growth`)."""
+        return self._to_user(self._S[:, _layout.R] * self._growth_factor(self._time))
 
     @property
     def masses(self) -> np.ndarray:
@@ -1132,8 +1260,9 @@ class Simulation:
         self._S[:, _layout.X:_layout.Y + 1] = pos[self._order]
         _layout.support_view(self._S)[:] = rest[self._order]
         self._image[:] = 0
-        dmax = 2.0 * float(self._S[:, _layout.R].max())
-        self._build_grid(self._S[:, _layout.X:_layout.Y + 1], dmax, self._cell_size)
+        dmax = 2.0 * float(self._S[:, _layout.R].max()) * self._growth_factor(self._time)
+        self._build_grid(self._S[:, _layout.X:_layout.Y + 1], self._grid_diameter(dmax),
+                         self._cell_size)
         self._predict_all()
 
     def set_velocities(self, velocities) -> None:
@@ -1379,6 +1508,26 @@ def _thermostat(value):
     if not rate >= 0.0:
         raise ValueError(f"thermostat rate must be >= 0, got {rate}")
     return None if rate == 0.0 else (kt, rate)
+
+
+def _as_growth(rate):
+    """Validate a growth rate: ``None`` (fixed radii, also for 0) or a float > 0."""
+    if rate is None:
+        return None
+    value = float(as_float_array("growth", rate, ()))
+    if value < 0.0:
+        raise ValueError(f"growth must be >= 0 (a rate per unit time), got {value}")
+    return value if value > 0.0 else None
+
+
+def _check_growth_physics(model, gravity) -> None:
+    """Growth is for elastic disks in free flight: refuse the rest."""
+    if gravity is not None:
+        raise ValueError("growth does not combine with gravity: growing disks fly "
+                         "on straight lines")
+    if model is not None:
+        raise ValueError("growth works with elastic disks between reflecting walls: "
+                         "not with restitution below 1, heated walls or a thermostat")
 
 
 def _as_gravity(gravity):

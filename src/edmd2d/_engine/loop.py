@@ -43,9 +43,14 @@ The state comes in bundles (tuples of arrays, unpacked at the top of :func:`run`
     :mod:`.response`);
 ``flight``
     the flight between events: ``None`` (straight lines) or gravity's tuple (see
-    :mod:`.flight`).
+    :mod:`.flight`);
+``growth``
+    ``None`` (fixed radii) or ``(rate, t0)``: every radius grows linearly in time,
+    ``S[i, R] (1 + rate (t - t0))`` (:func:`.scan.growth_factor`), in straight-line
+    flight with elastic contacts.  The grid's cells must stay wider than the largest
+    diameter: the caller stops the run before they no longer are and rebuilds it.
 
-Each combination of model and flight compiles its own ``run``, only when used.
+Each combination of model, flight and growth compiles its own ``run``, only when used.
 """
 
 from __future__ import annotations
@@ -135,7 +140,7 @@ def _log_event(k, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm, order,
 
 @kernel
 def run(t_end, max_collisions, max_events, mode, out, info,
-        particles, grid, walls, calendar, tallies, log, model, flight):
+        particles, grid, walls, calendar, tallies, log, model, flight, growth):
     """Process events in time order (``mode`` RUN_EVENTS), or (``mode`` PREDICT_ALL)
     predict every disk's next event from the time ``out[0]`` and rebuild the queue.
 
@@ -286,7 +291,8 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                     # A contact that rounding left not approaching exchanges nothing but is
                     # a processed contact event like any other (as for walls, and as in the
                     # reference): counted, logged, both disks re-predicted.
-                    response.collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight)
+                    response.collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight,
+                                          growth)
                     counts[C_COLLISIONS] += 1
                     n_coll += 1
                     stamp[i] += 1
@@ -304,7 +310,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                 drift(i, t, S, flight)
                 # (One call site: each inlined copy lengthens the first compilation.)
                 response.collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf,
-                                      wa, wb, model, flight)
+                                      wa, wb, model, flight, growth)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1
@@ -356,7 +362,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                 d = redo0 if k == 0 else redo1
                 dk = direction if k == 0 else -1
             t_new = predict(d, t, dk, S, E, tc, stamp, gi, gf, head, nxt,
-                            wa, wb, wstart, wwall, wsx, wsy, flight)
+                            wa, wb, wstart, wwall, wsx, wsy, flight, growth)
             E[d, STAGED] = 0  # (a new event: no stage of the lookahead yet)
             if mode == PREDICT_ALL:
                 qt[d] = t_new

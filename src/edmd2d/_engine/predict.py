@@ -122,6 +122,86 @@ def exit_time(x, vx, c, side, ncell, periodic):
     return INF, 0
 
 
+# ---------------------------------------------------------------- growing disks
+# Under growth every radius grows at a constant speed (``r_i' = rate R_i``), so a contact
+# distance grows linearly, ``d + d' t``; the flight stays a straight line.
+
+
+@njit
+def pair_time_grow(dx, dy, dvx, dvy, d, dd):
+    """Time until two circles with separation ``(dx, dy)`` and relative velocity
+    ``(dvx, dvy)`` come to the distance ``d + dd t`` that grows at the speed ``dd >= 0``
+    (the sum of their radii's growth speeds), or ``inf``.
+
+    The contact is the first root of ``a t^2 + 2 b t + c = 0`` with ``a = dv^2 - dd^2``,
+    ``b = dp.dv - d dd`` and ``c = dp^2 - d^2``; ``a`` has either sign.  The gap
+    ``|dp + dv t| - (d + dd t)`` is convex in ``t`` (a norm of a line less a linear
+    function) and has the sign of that quadratic, so:
+
+    - ``b < 0`` (the quadratic falls): its first root, when there is one, is
+      ``c / (-b + sqrt(disc))`` with ``disc = b^2 - a c``, free of cancellation as in
+      :func:`pair_time`; for ``a <= 0`` there is always one.  Overlapping by rounding
+      (``c <= 0``): contact now.
+    - ``b >= 0``: only if the growth outruns the relative speed (``a < 0``) does the
+      quadratic come back down; its root is then the larger one,
+      ``(b + sqrt(disc)) / -a`` (a sum of positive numbers).  Overlapping by rounding
+      with no root at all (``disc < 0``: the growth never lets them part): contact now.
+    """
+    b = dx * dvx + dy * dvy - d * dd
+    c = dx * dx + dy * dy - d * d
+    a = dvx * dvx + dvy * dvy - dd * dd
+    if b < 0.0:
+        if c <= 0.0:
+            return 0.0
+        disc = b * b - a * c
+        if disc <= 0.0:
+            return INF  # (only for a > 0: a miss, or a tangential touch)
+        return c / (-b + math.sqrt(disc))
+    if a >= 0.0:
+        return INF
+    disc = b * b - a * c
+    if disc < 0.0:
+        return 0.0
+    return (b + math.sqrt(disc)) / -a
+
+
+@njit
+def box_wall_time_grow(x, vx, r, dr, length):
+    """Time until a circle at coordinate ``x`` whose radius ``r`` grows at the speed
+    ``dr`` touches the wall at 0 or at ``length``: ``(dt, side)``, side 0 for the lower
+    wall, 1 for the upper one (a disk at rest grows into both: the earlier counts)."""
+    lo = INF
+    if vx - dr < 0.0:
+        lo = max((x - r) / (dr - vx), 0.0)
+    hi = INF
+    if vx + dr > 0.0:
+        hi = max((length - r - x) / (vx + dr), 0.0)
+    if lo <= hi:
+        return lo, (0 if lo < INF else -1)
+    return hi, 1
+
+
+@njit
+def segment_time_grow(x, y, vx, vy, r, dr, ax, ay, bx, by):
+    """:func:`segment_time` for a circle whose radius ``r`` grows at the speed ``dr``:
+    its rim closes on the segment's line at ``dr`` plus its normal speed towards it,
+    and on an end point as on a fixed circle of radius 0 (:func:`pair_time_grow`)."""
+    ux, uy, ll, nx, ny, h, w = _segment_frame(x, y, vx, vy, ax, ay, bx, by)
+    closing = dr - w if h >= 0.0 else dr + w  # the rate at which |h| - r shrinks
+    if closing > 0.0:
+        dt = max((abs(h) - r) / closing, 0.0)
+        s = ((x + vx * dt - ax) * ux + (y + vy * dt - ay) * uy) / ll
+        if 0.0 <= s <= 1.0:
+            return dt, 0
+    ta = pair_time_grow(x - ax, y - ay, vx, vy, r, dr)
+    tb = pair_time_grow(x - bx, y - by, vx, vy, r, dr)
+    if ta <= tb:
+        if ta < INF:
+            return ta, 1
+        return INF, -1
+    return tb, 2
+
+
 # ---------------------------------------------------------------- uniform acceleration
 # Under gravity a movable disk flies on a parabola.  The relative motion of two movable
 # disks stays linear (same acceleration), so :func:`pair_time` serves them; everything

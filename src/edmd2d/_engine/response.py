@@ -59,6 +59,7 @@ from .layout import (
     W_HEAT,
     W_LEFT,
     W_RIGHT,
+    R,
     X,
     Y,
     unpack_segment,
@@ -212,12 +213,18 @@ def _note_collision(i, t, invm, model):
 
 
 @njit(inline="always")
-def collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight):
+def collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight, growth):
     """Resolve the contact of disks ``i`` and ``j`` (both at time ``t``; ``j`` seen
     through the periodic image shift ``aux``), and add its impulse to the collision
     virial.  A contact that rounding left not approaching exchanges nothing.  Under
     gravity a disk leaves a wall it rested on (:func:`_rest`) if the collision gives
-    it a velocity along the wall's normal."""
+    it a velocity along the wall's normal.
+
+    Under growth ``(rate, t0)`` the contact distance grows at ``dd = (R_i + R_j) rate``:
+    with ``vn`` the normal relative velocity (the rate at which the centres part), the
+    gap closes at ``dd - vn``; the collision reverses that rate, ``vn' - dd = dd - vn``,
+    so that the disks part (elastic in the frame of the growing rims; it adds kinetic
+    energy, the work of the growth)."""
     sx, sy = unpack_shift(aux)
     dx = S[i, X] - (S[j, X] + sx * gf[0])
     dy = S[i, Y] - (S[j, Y] + sy * gf[1])
@@ -228,6 +235,8 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight):
     # the rounding errors average out (and no square root is taken).
     dd = dx * dx + dy * dy
     s = (S[i, VX] - S[j, VX]) * dx + (S[i, VY] - S[j, VY]) * dy
+    if growth is not None:
+        s -= (S[i, R] + S[j, R]) * growth[0] * math.sqrt(dd)  # (s = |d| vn: less |d| dd)
     if s < 0.0:
         wi = invm[i]
         wj = invm[j]
@@ -331,7 +340,8 @@ def _heat(i, k, nx, ny, S, invm, acc, wacc, kind, partner, model):
 
 
 @njit(inline="always")
-def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model, flight):
+def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model, flight,
+                 growth):
     """Resolve the contact of disk ``i`` (at time ``t``) with box wall ``aux`` (``kind``
     BOX: x=0, x=width, y=0, y=height) or with the wall segment ``partner`` (its side or
     an end point, and its image shift, packed in ``aux``), and add the impulse to that
@@ -339,7 +349,9 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model
     and row ``partner`` of ``wacc`` (the segment's vector, side or end-point and contact
     tallies, ``layout.W_*``) for a segment.  Under gravity a disk may come to rest on
     a box wall (:func:`_rest`), and leaves a wall it rested on when a segment gives it
-    a velocity along that wall's normal."""
+    a velocity along that wall's normal.  Under growth the disk's rim moves towards
+    the wall at ``rate R_i``: the contact reverses the rate at which the gap closes
+    (see :func:`collide_pair`)."""
     # The normal n into the gas, not normalised for a segment (as for a pair, see
     # collide_pair): ``nn = n.n``, exactly 1 at a box wall.
     if kind == BOX:
@@ -379,6 +391,8 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model
     # Mirror the normal velocity (scaled by e), if approaching; or, at a heated wall,
     # send the disk back with a velocity drawn afresh.
     vn = S[i, VX] * nx + S[i, VY] * ny  # (|n| times the normal velocity)
+    if growth is not None:
+        vn -= S[i, R] * growth[0] * math.sqrt(nn)
     heated = False
     if model is not None:
         heated = model[7][aux if kind == BOX else 4 + partner] > 0.0

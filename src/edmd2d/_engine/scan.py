@@ -43,13 +43,26 @@ from .predict import (
     INF,
     box_wall_time,
     box_wall_time_accel,
+    box_wall_time_grow,
     exit_time,
     exit_time_accel,
     pair_time,
+    pair_time_grow,
     point_time,
     segment_time,
     segment_time_accel,
+    segment_time_grow,
 )
+
+
+@njit
+def growth_factor(t, growth):
+    """Under growth ``(rate, t0)``: the factor ``1 + rate (t - t0)`` by which every
+    radius at ``t`` exceeds its stored value ``S[i, R]`` (the radius at ``t0``); each
+    radius grows at the speed ``rate S[i, R]``.  1 without growth."""
+    if growth is None:
+        return 1.0
+    return 1.0 + growth[0] * (t - growth[1])
 
 
 @njit
@@ -67,7 +80,7 @@ def _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, flight, best):
 
 @njit(inline="always")
 def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
-                S, stamp, gi, gf, head, nxt, best, partner, aux, pst, flight):
+                S, stamp, gi, gf, head, nxt, best, partner, aux, pst, flight, growth):
     """Earliest contact of disk ``i`` (at ``x, y`` with velocity ``vx, vy`` at time
     ``t``) with the disks in the cells at offsets ``[ox0, ox1] x [oy0, oy1]`` from
     ``(cx, cy)``, if before ``best`` (a time interval from ``t``).
@@ -75,8 +88,12 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
     Under gravity two movable disks (or two immovable ones) share their acceleration:
     their relative motion is a straight line and :func:`pair_time` holds; a movable
     disk against an immovable one is a parabola against a fixed point
-    (:func:`point_time`)."""
+    (:func:`point_time`).
+
+    Under growth ``r`` is the stored radius ``S[i, R]``, and the contact distance
+    ``(r + S[j, R])`` times :func:`growth_factor` grows at ``(r + S[j, R]) rate``."""
     gxi, gyi = acceleration(i, flight)
+    f = growth_factor(t, growth)
     ncx = gi[0]
     for ox in range(ox0, ox1 + 1):
         nxc, sx = neighbour(cx, ox, ncx, gi[2] != 0)
@@ -92,7 +109,11 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
                     xj, yj = position_at(j, t, S, flight)
                     dx = x - (xj + sx * gf[0])
                     dy = y - (yj + sy * gf[1])
-                    if flight is None:
+                    if growth is not None:
+                        rr = r + S[j, R]
+                        dtc = pair_time_grow(dx, dy, vx - S[j, VX], vy - S[j, VY], rr * f,
+                                             rr * growth[0])
+                    elif flight is None:
                         dtc = pair_time(dx, dy, vx - S[j, VX], vy - S[j, VY], r + S[j, R])
                     else:
                         dtc = _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, flight,
@@ -107,17 +128,22 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
 
 
 @njit(inline="always")
-def _scan_walls(x, y, vx, vy, gx, gy, r, c, gf, wa, wb, wstart, wwall, wsx, wsy,
-                best, partner, aux, flight):
+def _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall, wsx, wsy,
+                best, partner, aux, flight, growth):
     """Earliest contact with the wall segments listed for cell ``c``, if before ``best``
-    (``gx, gy``: the disk's acceleration under gravity)."""
+    (``gx, gy``: the disk's acceleration under gravity; ``dr``: its radius's growth
+    speed under growth)."""
     if wa.shape[0] == 0:  # no segments: spare the bucket lookup (a cache miss at large N)
         return best, partner, aux
     for k in range(wstart[c], wstart[c + 1]):
         w = wwall[k]
         shx = wsx[k] * gf[0]
         shy = wsy[k] * gf[1]
-        if flight is None or (gx == 0.0 and gy == 0.0):
+        if growth is not None:
+            dtw, part = segment_time_grow(x, y, vx, vy, r, dr,
+                                          wa[w, 0] + shx, wa[w, 1] + shy,
+                                          wb[w, 0] + shx, wb[w, 1] + shy)
+        elif flight is None or (gx == 0.0 and gy == 0.0):
             dtw, part = segment_time(x, y, vx, vy, r,
                                      wa[w, 0] + shx, wa[w, 1] + shy,
                                      wb[w, 0] + shx, wb[w, 1] + shy)
@@ -153,7 +179,7 @@ def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tc, E, gi, gf, flight):
 
 @njit(inline="always")
 def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
-            wa, wb, wstart, wwall, wsx, wsy, flight):
+            wa, wb, wstart, wwall, wsx, wsy, flight, growth):
     """Predict disk ``i``'s next event from time ``t``, keep its best non-crossing
     candidate, and return the time of the scheduled event.
 
@@ -162,6 +188,8 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
     current cell (not wrapped) in direction +x, -x, +y, -y; if its kept candidate is
     still valid only the newly exposed row of 3 cells (and the cell's walls) is
     scanned against it, otherwise the prediction is a full one.
+
+    ``growth``: ``None``, or ``(rate, t0)`` for radii that grow (:func:`growth_factor`).
 
     (One function for both, compiled into the event loop at a single place.)
     """
@@ -177,6 +205,10 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
         gx, gy = acceleration(i, flight)
     x, y = position_at(i, t, S, flight)
     r = S[i, R]
+    dr = 0.0
+    if growth is not None:
+        dr = r * growth[0]
+        r *= growth_factor(t, growth)
     c = E[i, CELL]
     cy = c // gi[0]
     cx = c - cy * gi[0]
@@ -205,7 +237,9 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
         kind = NONE
         aux = 0
         if gi[2] == 0:
-            if flight is None:
+            if growth is not None:
+                dtw, side = box_wall_time_grow(x, vx, r, dr, gf[0])
+            elif flight is None:
                 dtw, side = box_wall_time(x, vx, r, gf[0])
             else:
                 dtw, side = box_wall_time_accel(x, vx, gx, r, gf[0])
@@ -214,7 +248,9 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
                 kind = BOX
                 aux = side
         if gi[3] == 0:
-            if flight is None:
+            if growth is not None:
+                dtw, side = box_wall_time_grow(y, vy, r, dr, gf[1])
+            elif flight is None:
                 dtw, side = box_wall_time(y, vy, r, gf[1])
             else:
                 dtw, side = box_wall_time_accel(y, vy, gy, r, gf[1])
@@ -224,16 +260,17 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
                 aux = 2 + side
     partner = -1
     pst = 0
-    bd, pd, ad, ps = _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
-                                 S, stamp, gi, gf, head, nxt, best, -1, 0, 0, flight)
+    bd, pd, ad, ps = _scan_disks(i, t, x, y, vx, vy, S[i, R], cx, cy, ox0, ox1, oy0, oy1,
+                                 S, stamp, gi, gf, head, nxt, best, -1, 0, 0, flight,
+                                 growth)
     if bd < best:
         best = bd
         kind = DISK
         partner = pd
         aux = ad
         pst = ps
-    bw, pw, aw = _scan_walls(x, y, vx, vy, gx, gy, r, c, gf, wa, wb, wstart, wwall, wsx,
-                             wsy, best, -1, 0, flight)
+    bw, pw, aw = _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall,
+                             wsx, wsy, best, -1, 0, flight, growth)
     if bw < best:
         best = bw
         kind = SEGMENT

@@ -72,3 +72,134 @@ def test_wall_clock_triggers_fire_between_slices(monkeypatch):
 def test_bad_operations_are_refused(make, error, match):
     with pytest.raises(error, match=match):
         make()
+
+
+# ----------------------------------------------------------------- measure, record, frames
+def _same_measurement(a, b):
+    """Two Measurements equal field by field, bit for bit (NaN equal to NaN)."""
+    import dataclasses
+
+    for f in dataclasses.fields(a):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if isinstance(x, (float, np.ndarray, tuple)):
+            assert np.array_equal(np.asarray(x), np.asarray(y), equal_nan=True), f.name
+        else:
+            assert x == y, f.name
+
+
+def test_measure_record_and_gsd_in_one_run_equal_separate_runs(tmp_path):
+    gsd = pytest.importorskip("gsd.hoomd")
+    combined = ed.make_gas(300, 0.35, seed=7)
+    window = op.Measure(op.Blocks(duration=3.0, blocks=6))
+    path = op.RecordTrajectory(op.Every(dt=0.5), include_start=True)
+    combined.run(until=3.0, operations=[
+        window, path, op.WriteGSD(tmp_path / "one.gsd", op.Every(dt=0.75))])
+
+    _same_measurement(window.result(), ed.make_gas(300, 0.35, seed=7).measure(3.0, blocks=6))
+    times, positions = ed.trajectory(ed.make_gas(300, 0.35, seed=7), 0.5, 7)
+    assert np.array_equal(path.times, times)
+    assert np.array_equal(path.positions, positions)
+    alone = ed.make_gas(300, 0.35, seed=7)
+    from edmd2d.io import gsd as edgsd
+
+    edgsd.record(alone, tmp_path / "alone.gsd", [0.75, 1.5, 2.25, 3.0])
+    with gsd.open(str(tmp_path / "one.gsd")) as a, gsd.open(str(tmp_path / "alone.gsd")) as b:
+        assert len(a) == len(b) == 4
+        for fa, fb in zip(a, b):
+            assert np.array_equal(fa.particles.position, fb.particles.position)
+            assert np.array_equal(fa.particles.velocity, fb.particles.velocity)
+            assert fa.log.keys() == fb.log.keys()
+            for key in fa.log:
+                assert np.array_equal(fa.log[key], fb.log[key], equal_nan=True), key
+    assert np.array_equal(combined.positions, alone.positions)
+    assert combined.counts == alone.counts
+
+
+def test_a_measure_goes_on_over_runs_and_through_a_checkpoint(tmp_path):
+    reference = ed.make_gas(200, 0.3, seed=3).measure(4.0, blocks=4)
+    twice = ed.make_gas(200, 0.3, seed=3)
+    window = op.Measure(op.Blocks(4.0, 4))
+    twice.run(until=1.5, operations=[window])
+    assert window.blocks == 1 and window.result().duration == 1.0
+    twice.run(until=4.0, operations=[window])
+    _same_measurement(window.result(), reference)
+
+    first = ed.make_gas(200, 0.3, seed=3)
+    window = op.Measure(op.Blocks(4.0, 4))
+    first.run(until=2.5, operations=[window, op.Checkpoint(
+        tmp_path / "c.ckpt", op.At([2.5]), metadata=lambda s: {"m": window.state()})])
+    later = ed.checkpoint.load(tmp_path / "c.ckpt")
+    again = op.Measure.from_state(ed.checkpoint.read_metadata(tmp_path / "c.ckpt")["m"])
+    _same_measurement(again.result(), window.result())  # (two blocks, read back exactly)
+    later.run(until=4.0, operations=[again])
+    _same_measurement(again.result(), reference)
+
+
+def test_a_window_that_starts_later_and_other_triggers():
+    sim = ed.make_gas(200, 0.3, seed=5)
+    window = op.Measure(op.Blocks(3.0, 3, start=1.0))
+    seen = []
+    sim.run(until=4.0, operations=[window, op.Callback(lambda s: seen.append(window.blocks),
+                                                       op.Blocks(3.0, 3, start=1.0))])
+    assert seen == [0, 1, 2, 3]  # (the window opens at 1.0, then a block each)
+    plain = ed.make_gas(200, 0.3, seed=5).advance(until=1.0)
+    _same_measurement(window.result(), plain.measure(3.0, blocks=3))
+
+    by_dt = op.Measure(op.Every(dt=0.5))
+    ed.make_gas(200, 0.3, seed=5).run(until=2.0, operations=[by_dt])
+    m = by_dt.result()
+    assert m.blocks == 4 and m.duration == 2.0 and np.isfinite(m.pressure_error)
+    assert m.collisions == ed.make_gas(200, 0.3, seed=5).measure(2.0, blocks=4).collisions
+    with pytest.raises(ValueError, match="no block"):
+        op.Measure(op.Every(dt=1.0)).result()
+    late = ed.make_gas(50, 0.3, seed=1).advance(until=2.0)
+    with pytest.raises(ValueError, match="before the run's start"):
+        late.run(until=3.0, operations=[op.Measure(op.Blocks(2.0, 2, start=1.0))])
+
+
+def test_every_with_a_start_keeps_the_grid_of_times():
+    sim = ed.make_gas(50, 0.3, seed=1).advance(until=1.3)
+    seen = []
+    sim.run(until=2.5, operations=[
+        op.Callback(lambda s: seen.append(s.time), op.Every(dt=0.5, start=0.0))])
+    assert seen == [1.5, 2.0, 2.5]
+    with pytest.raises(TypeError, match="goes with dt"):
+        op.Every(collisions=3, start=0.0)
+
+
+def test_recorded_frames_animate_as_the_live_animation():
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from edmd2d import viz
+
+    live = viz.animate(ed.make_gas(60, 0.3, seed=1), duration=1.0, fps=5, trail=3)
+    frames = op.RecordFrames(op.At(live.frame_times[1:]))
+    ed.make_gas(60, 0.3, seed=1).run(until=float(live.frame_times[-1]), operations=[frames])
+    replay = viz.animate_frames(frames, fps=5, trail=3)
+    assert np.array_equal(replay.frame_times, live.frame_times)
+
+    def picture(artists):
+        out = []
+        for a in artists:
+            if a.get_gid() == "edmd2d-disks":
+                out.append(a.get_offsets().copy())
+            elif a.get_gid() == "edmd2d-trails":
+                out.extend(np.array(s, copy=True) for s in a.get_segments())
+            else:
+                out.append(a.get_text())
+        return out
+
+    shown = [picture(live.goto_frame(k)) for k in range(len(live.frame_times))]
+    for _ in range(2):  # (recorded frames play again, trails and all)
+        for k, expected in enumerate(shown):
+            got = picture(replay.goto_frame(k))
+            assert len(got) == len(expected)
+            for a, b in zip(expected, got):
+                assert (a == b) if isinstance(a, str) else np.array_equal(a, b, equal_nan=True)
+    with pytest.raises(ValueError, match="at least one frame"):
+        viz.animate_frames([])
+    plt.close("all")

@@ -316,6 +316,10 @@ def maxwell_boltzmann_test(source, *, masses=None, temperature: float | None = N
 def trajectory(sim, interval: float, frames: int):
     """Advance ``sim`` and record its unwrapped positions at equal time steps.
 
+    One run with a :class:`~edmd2d.operations.RecordTrajectory` at the frame times;
+    to record while measuring or writing files, pass that operation to
+    :meth:`~edmd2d.Simulation.run` with the others.
+
     Parameters
     ----------
     sim : Simulation
@@ -330,20 +334,18 @@ def trajectory(sim, interval: float, frames: int):
     times : ndarray, shape (frames,)
     positions : ndarray, shape (frames, N, 2)
         Unwrapped positions (:attr:`~edmd2d.Simulation.unwrapped_positions`): periodic
-        wraps undone, so differences are true displacements.
+        wraps undone, so that differences are true displacements.
     """
+    from . import operations as _operations
+
     if not isinstance(sim, _simulation_type()):
         raise TypeError(f"trajectory() needs an edmd2d.Simulation, got {type(sim).__name__}")
     interval = as_positive_float("interval", interval)
     frames = as_count("frames", frames, minimum=1)
-    t0 = sim.time
-    times = t0 + interval * np.arange(frames)
-    out = np.empty((frames, len(sim), 2))
-    for k, t in enumerate(times):
-        if k:
-            sim.advance(until=float(t))
-        out[k] = sim.unwrapped_positions
-    return times, out
+    times = sim.time + interval * np.arange(frames)
+    record = _operations.RecordTrajectory(_operations.At(times[1:]), include_start=True)
+    _operations.run(sim, until=float(times[-1]), operations=[record])
+    return times, record.positions
 
 
 def mean_squared_displacement(positions, *, max_lag: int | None = None) -> np.ndarray:

@@ -11,8 +11,10 @@ The format (``FORMAT`` and ``VERSION`` below) is a NumPy ``.npz`` archive (a zip
 file, every member with its CRC-32): one ``.npy`` member per array, and a member
 ``header.json`` holding the format name, the version, the edmd2d version that wrote
 it, and every value that is not an array (the box, the wall segments, scalars, the
-generator's state) with the array members it refers to.  Nothing is pickled: loading a
-checkpoint runs no code from the file.
+generator's state) with the array members it refers to, and the caller's
+``metadata`` (what a program needs to go on with the run: its configuration, the time
+it runs to, the state of its measurements; read back with :func:`read_metadata`).
+Nothing is pickled: loading a checkpoint runs no code from the file.
 
 Writing goes to a temporary file beside the target, flushed to disk, then renamed over
 it: a write interrupted half-way leaves the previous checkpoint intact.  Loading
@@ -46,7 +48,7 @@ import numpy as np
 from . import models as _models
 from .geometry import Box, Wall
 
-__all__ = ["FORMAT", "VERSION", "save", "load"]
+__all__ = ["FORMAT", "VERSION", "save", "load", "read_metadata"]
 
 FORMAT = "edmd2d-checkpoint"
 # Bump when what a checkpoint holds changes incompatibly; load refuses other versions.
@@ -55,7 +57,7 @@ VERSION = 1
 _HEADER = "header.json"
 
 
-def save(sim, path) -> None:
+def save(sim, path, *, metadata: dict | None = None) -> None:
     """Write the complete state of ``sim`` to ``path`` (atomically: see the module).
 
     Parameters
@@ -65,12 +67,15 @@ def save(sim, path) -> None:
     path : str or os.PathLike
         The file; its directory must exist.  An existing file is replaced only once
         the new one is complete.
+    metadata : dict, optional
+        Anything JSON can hold (strings, numbers, lists, dicts), stored with the
+        state and returned by :func:`read_metadata`; floats are kept exactly.
 
     Raises
     ------
     TypeError
-        If ``sim`` is not a Simulation, or holds a value this format cannot store
-        (nothing is then written).
+        If ``sim`` is not a Simulation, holds a value this format cannot store, or
+        ``metadata`` is not a dict JSON can hold (nothing is then written).
     OSError
         If the file cannot be written (the previous file, if any, is left as it was).
     """
@@ -83,6 +88,14 @@ def save(sim, path) -> None:
     arrays: dict[str, np.ndarray] = {}
     state = {key: _encode(key, value, arrays) for key, value in sim.__getstate__().items()}
     header = {"format": FORMAT, "version": VERSION, "edmd2d": __version__, "state": state}
+    if metadata is not None:
+        if not isinstance(metadata, dict):
+            raise TypeError(f"metadata must be a dict, got {type(metadata).__name__}")
+        try:
+            json.dumps(metadata)
+        except (TypeError, ValueError) as exc:
+            raise TypeError(f"metadata must hold only what JSON can store ({exc})") from None
+        header["metadata"] = metadata
     path = Path(path)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
@@ -122,10 +135,51 @@ def load(path):
     OSError
         If it cannot be read.
     """
-    from . import __version__
     from .simulation import Simulation
 
+    header, arrays = _read(path, arrays=True)
+    try:
+        state = {key: _decode(value, arrays) for key, value in header["state"].items()}
+        sim = Simulation.__new__(Simulation)
+        sim.__setstate__(state)
+        _check_consistent(sim)
+    except (KeyError, TypeError, ValueError, IndexError) as exc:
+        raise ValueError(f"{path} holds an inconsistent state ({exc})") from None
+    return sim
+
+
+def read_metadata(path) -> dict:
+    """The ``metadata`` saved with a checkpoint (an empty dict if none was given).
+
+    Only the file's header is read, so this is quick for any size of state.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    ValueError
+        As for :func:`load`.
+    OSError
+        If it cannot be read.
+    """
+    header, _ = _read(path, arrays=False)
+    meta = header.get("metadata", {})
+    return meta if isinstance(meta, dict) else {}
+
+
+def _read(path, *, arrays: bool):
+    """``(header, arrays)`` of a checkpoint file, checked as :func:`load` describes
+    (``arrays`` empty unless asked for)."""
+    from . import __version__
+
     path = Path(path)
+    out = {}
     try:
         with zipfile.ZipFile(path) as z:
             names = set(z.namelist())
@@ -139,23 +193,16 @@ def load(path):
                     f"{path} is a checkpoint of format version {header.get('version')} "
                     f"(written by edmd2d {header.get('edmd2d')}); this edmd2d "
                     f"{__version__} reads version {VERSION}")
-            arrays = {}
-            for name in names - {_HEADER}:
-                with z.open(name) as member:
-                    arrays[name[:-4]] = np.lib.format.read_array(
-                        io.BytesIO(member.read()), allow_pickle=False)
+            if arrays:
+                for name in names - {_HEADER}:
+                    with z.open(name) as member:
+                        out[name[:-4]] = np.lib.format.read_array(
+                            io.BytesIO(member.read()), allow_pickle=False)
     except zipfile.BadZipFile as exc:
         raise ValueError(f"{path} is truncated or corrupted ({exc})") from None
     except (KeyError, json.JSONDecodeError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path} is corrupted ({exc})") from None
-    try:
-        state = {key: _decode(value, arrays) for key, value in header["state"].items()}
-        sim = Simulation.__new__(Simulation)
-        sim.__setstate__(state)
-        _check_consistent(sim)
-    except (KeyError, TypeError, ValueError, IndexError) as exc:
-        raise ValueError(f"{path} holds an inconsistent state ({exc})") from None
-    return sim
+    return header, out
 
 
 # ---------------------------------------------------------------- encoding

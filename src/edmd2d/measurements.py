@@ -63,6 +63,10 @@ class Measurement:
         ``kT = (sum m v^2 - P_c^2 / M) / f`` averaged over the block boundaries, where
         ``P_c`` is the conserved part of the total momentum and ``M`` the total mass
         (constant in an elastic run, so this is the window's temperature).
+    temperature_error : float
+        Standard error of the blocks' temperatures (each the mean of its two
+        boundaries): rounding only in an elastic run, the fluctuation of the
+        temperature with a thermostat, heated walls or inelastic collisions.
     pressure, pressure_error : float
         Virial pressure ``P = (N kT + sum J |r_ij| / (2 t)) / A``: the sum runs over the
         disk-disk collisions of the window, ``J`` is the impulse magnitude and ``|r_ij|``
@@ -151,6 +155,7 @@ class Measurement:
     segment_pressures_error: np.ndarray
     segment_pressure: float
     segment_pressure_error: float
+    temperature_error: float = math.nan
 
     def summary(self) -> str:
         """A few lines with the main values and their error bars.
@@ -284,6 +289,11 @@ def measure(sim, duration: float, *, blocks: int = 10,
     values.  Equilibrate first (``sim.advance(until=...)``): every collision of the
     window counts.
 
+    This is one run with a :class:`edmd2d.operations.Measure` over
+    ``Blocks(duration, blocks)``; to measure while the same run writes files or
+    records frames, or to read the measurement block by block, pass that operation to
+    :meth:`~edmd2d.Simulation.run` (the numbers are the same to the last bit).
+
     Formulas (2D, ``k_B = 1``; ``N`` movable disks, area ``A``, window length ``t``,
     ``C`` disk-disk collisions, ``J`` impulse magnitude, ``|r_ij|`` contact distance):
 
@@ -391,55 +401,72 @@ def measure(sim, duration: float, *, blocks: int = 10,
     >>> m.collisions == round(m.collision_rate * m.n * m.duration / 2)
     True
     """
+    from . import operations as _operations
     from .simulation import Simulation
 
     if not isinstance(sim, Simulation):
         raise TypeError(f"measure() needs an edmd2d.Simulation, got {type(sim).__name__}")
     duration = as_positive_float("duration", duration)
     blocks = as_count("blocks", blocks, minimum=1)
-    if area is None:
-        area, area_source = _container(sim)
-    else:
-        area, area_source = as_positive_float("area", area), "given"
-
-    box = sim.box
-    n_all = len(sim)
-    movable = np.isfinite(sim.masses)
-    n = int(movable.sum())
-    dof, _ = degrees_of_freedom(sim)
-    # Wall lengths in the order of the engine's box accumulators: x=0, x=W, y=0, y=H.
-    lengths = np.array([box.height, box.height, box.width, box.width])
-    walled = np.array([not box.periodic[0]] * 2 + [not box.periodic[1]] * 2)
-
-    t0 = sim.time
-    acc0 = sim._accumulators()
-    counts0 = sim.counts
-    edges_acc = [acc0]
-    temps = [kinetic_temperature(sim)]
-    axis_temps = [_axis_temperatures(sim, movable)]
-    speeds = [_mean_speed(sim, movable)]
-    coll = [counts0.collisions]
+    if area is not None:
+        area = as_positive_float("area", area)
+    window = _operations.Measure(_operations.Blocks(duration, blocks), area=area)
     bar, owned = _progress.bar(progress, total=duration, unit="time", desc="measure")
     try:
-        for b in range(1, blocks + 1):
-            t_end = t0 + duration * b / blocks if b < blocks else t0 + duration
-            sim.advance(until=t_end, progress=bar if bar is not None else False)
-            edges_acc.append(sim._accumulators())
-            temps.append(kinetic_temperature(sim))
-            axis_temps.append(_axis_temperatures(sim, movable))
-            speeds.append(_mean_speed(sim, movable))
-            coll.append(sim.counts.collisions)
+        _operations.run(sim, until=sim.time + duration, operations=[window],
+                        progress=bar if bar is not None else False)
     finally:
         if owned:
             bar.close()
-    tau = duration / blocks
+    return window.result()
+
+
+def _edge(sim, movable: np.ndarray) -> dict:
+    """What a measurement window keeps at each block boundary: the time, the
+    engine's accumulated sums (:meth:`Simulation._accumulators`, cumulative since the
+    simulation was created, so that a window needs nothing from between boundaries),
+    the temperatures, the mean speed and the counts."""
+    counts = sim.counts
+    return {
+        "time": sim.time,
+        "acc": sim._accumulators(),
+        "temperature": kinetic_temperature(sim),
+        "axis_temperatures": _axis_temperatures(sim, movable),
+        "speed": _mean_speed(sim, movable),
+        "collisions": counts.collisions,
+        "wall_collisions": counts.wall_collisions,
+    }
+
+
+def _from_edges(edges: list, tau, duration: float, *, n: int, n_all: int, dof: int,
+                area: float, area_source: str, box, walls) -> Measurement:
+    """The :class:`Measurement` of the window whose block boundaries are ``edges``
+    (from :func:`_edge`; at least two).
+
+    ``tau`` holds the length of each block, shape (B,) (or one length for all), and
+    ``duration`` that of the window: given rather than taken from the boundary times,
+    so that equal blocks of a window cut as ``t0 + duration * b / B`` use the exact
+    ``duration / B`` and ``duration``, as the formulas of :func:`measure` state them.
+    """
+    blocks = len(edges) - 1
+    tau = np.broadcast_to(np.asarray(tau, dtype=float), (blocks,))
+    tau3 = tau[:, None, None]  # (for the per-segment arrays, shape (B, S, 2))
+    acc0 = edges[0]["acc"]
+    edges_acc = [e["acc"] for e in edges]
+    temps = np.array([e["temperature"] for e in edges])
+    axis_temps = [e["axis_temperatures"] for e in edges]
+    speeds = [e["speed"] for e in edges]
+    coll = [e["collisions"] for e in edges]
+    # Wall lengths in the order of the engine's box accumulators: x=0, x=W, y=0, y=H.
+    lengths = np.array([box.height, box.height, box.width, box.width])
+    walled = np.array([not box.periodic[0]] * 2 + [not box.periodic[1]] * 2)
 
     virial = np.diff([a["virial"] for a in edges_acc])
     virial_axes = np.array([edges_acc[-1][k] - acc0[k] for k in ("virial_xx", "virial_yy")])
     kt_axes = np.mean(np.array(axis_temps), axis=0)
     box_imp = np.diff(np.array([a["box_impulse"] for a in edges_acc]), axis=0)
     seg_imp = edges_acc[-1]["segment_impulse"] - acc0["segment_impulse"]
-    seg_len = np.array([w.length for w in sim.walls]).reshape(-1, 1)
+    seg_len = np.array([w.length for w in walls]).reshape(-1, 1)
     seg_vec = np.diff(np.array([a["segment_impulses"] for a in edges_acc]), axis=0)
     seg_side = np.diff(np.array([a["segment_side_impulses"] for a in edges_acc]), axis=0)
     seg_contacts = edges_acc[-1]["segment_contacts"] - acc0["segment_contacts"]
@@ -448,7 +475,6 @@ def measure(sim, duration: float, *, blocks: int = 10,
     # happened not to be touched, and bias the mean upwards).
     touched = edges_acc[-1]["segment_side_impulses"] > 0.0  # (S, 2)
     touched_length = float((seg_len * touched).sum())
-    temps = np.array(temps)
     kt_block = 0.5 * (temps[1:] + temps[:-1])
     n_coll = np.diff(coll)
 
@@ -472,9 +498,9 @@ def measure(sim, duration: float, *, blocks: int = 10,
         else:
             wall_p, wall_err = math.nan, math.nan
         seg_forces = seg_vec.sum(axis=0) / duration
-        seg_forces_err = _stderr(seg_vec / tau)
+        seg_forces_err = _stderr(seg_vec / tau3)
         seg_pressures = seg_side.sum(axis=0) / (duration * seg_len)
-        seg_pressures_err = _stderr(seg_side / (tau * seg_len))
+        seg_pressures_err = _stderr(seg_side / (tau3 * seg_len))
         if touched_length > 0.0:
             seg_p = float(seg_side[:, touched].sum() / (duration * touched_length))
             seg_p_err = _stderr(seg_side[:, touched].sum(axis=1) / (tau * touched_length))
@@ -484,7 +510,7 @@ def measure(sim, duration: float, *, blocks: int = 10,
     return Measurement(
         duration=float(duration),
         collisions=int(n_coll.sum()),
-        wall_collisions=sim.counts.wall_collisions - counts0.wall_collisions,
+        wall_collisions=edges[-1]["wall_collisions"] - edges[0]["wall_collisions"],
         blocks=blocks,
         n=n,
         area=area,
@@ -514,6 +540,7 @@ def measure(sim, duration: float, *, blocks: int = 10,
         segment_pressures_error=_frozen(seg_pressures_err),
         segment_pressure=seg_p,
         segment_pressure_error=seg_p_err,
+        temperature_error=_stderr(kt_block),
     )
 
 

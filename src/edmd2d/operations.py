@@ -1,18 +1,29 @@
 """Operations with triggers: one run that drives several things at once.
 
 :func:`run` advances a simulation and, on the way, fires each :class:`Operation` when
-its :class:`Trigger` says: every ``dt`` of simulated time, at given times, every ``k``
-collisions, or every so many seconds of wall-clock time.  A trigger in simulated time
-fires at exactly that time, with every disk synchronized to it (the run stops there,
-the operation reads the state, the run goes on: events are not changed by stopping);
-a collision trigger fires right after its collision; a wall-clock trigger fires at the
-first stop after its period has passed (the run stops at least every
-``WALL_CLOCK_SLICE`` collisions while one is active).  Operations due at the same
-moment fire in the order given.
+its :class:`Trigger` says: every ``dt`` of simulated time, at given times, at the ends
+of the equal blocks of a window, every ``k`` collisions, or every so many seconds of
+wall-clock time.  A trigger in simulated time fires at exactly that time, with every
+disk synchronized to it (the run stops there, the operation reads the state, the run
+goes on: events are not changed by stopping); a collision trigger fires right after its
+collision; a wall-clock trigger fires at the first stop after its period has passed
+(the run stops at least every ``WALL_CLOCK_SLICE`` collisions while one is active).
+Operations due at the same moment fire in the order given, so that one listed after
+another sees what the first did (a :class:`Callback` after a :class:`Measure` with
+the same trigger reads the block just ended).
 
-Operations here: :class:`WriteGSD` (a frame of a GSD trajectory, see
-:mod:`edmd2d.io.gsd`), :class:`Checkpoint` (a restart file, see
-:mod:`edmd2d.checkpoint`), and :class:`Callback` (any function of the simulation).
+Operations here:
+
+- :class:`Measure`: pressure, temperature, collision rates and wall forces over the run,
+  in blocks, as a :class:`~edmd2d.measurements.Measurement`
+  (:func:`edmd2d.measurements.measure` is one run with one of them);
+- :class:`RecordTrajectory`: positions (and velocities) at each firing
+  (:func:`edmd2d.analysis.trajectory` is one run with one of them);
+- :class:`RecordFrames`: a :class:`Snapshot` of everything a picture shows at each
+  firing, for :func:`edmd2d.viz.animate_frames` to replay;
+- :class:`WriteGSD`: a frame of a GSD trajectory (see :mod:`edmd2d.io.gsd`);
+- :class:`Checkpoint`: a restart file (see :mod:`edmd2d.checkpoint`);
+- :class:`Callback`: any function of the simulation.
 
 Examples
 --------
@@ -24,19 +35,31 @@ Examples
 ...                                                  op.Every(dt=0.5))])
 >>> times
 [0.5, 1.0, 1.5, 2.0]
+
+A measurement in four blocks and a trajectory from one run:
+
+>>> sim = ed.make_gas(100, 0.3, seed=1)
+>>> window = op.Measure(op.Blocks(duration=2.0, blocks=4))
+>>> path = op.RecordTrajectory(op.Every(dt=0.5), include_start=True)
+>>> _ = sim.run(until=2.0, operations=[window, path])
+>>> window.result().blocks, path.positions.shape
+(4, (5, 100, 2))
 """
 
 from __future__ import annotations
 
+import json
 import math
 import time as _time
 
 import numpy as np
 
 from . import checkpoint as _checkpoint
+from . import measurements as _measurements
 from ._validate import as_count, as_float_array, as_positive_float
 
-__all__ = ["Trigger", "Every", "At", "Operation", "Callback", "WriteGSD", "Checkpoint",
+__all__ = ["Trigger", "Every", "At", "Blocks", "Operation", "Callback", "Measure",
+           "RecordTrajectory", "RecordFrames", "Snapshot", "WriteGSD", "Checkpoint",
            "run", "WALL_CLOCK_SLICE"]
 
 # Collisions at most between two stops while a wall-clock trigger is active.
@@ -44,21 +67,46 @@ WALL_CLOCK_SLICE = 100_000
 
 
 class Trigger:
-    """When an operation fires (see :class:`Every` and :class:`At`)."""
+    """When an operation fires (see :class:`Every`, :class:`At` and :class:`Blocks`)."""
 
     def _start(self, sim) -> None:
         """Set the first firing from the state at the start of a run."""
 
     def next_time(self) -> float:
-        """The next simulated time at which to fire (``inf``: none)."""
+        """The next simulated time at which to fire (``inf``: none).
+
+        Returns
+        -------
+        float
+        """
         return math.inf
 
     def collisions_left(self, sim) -> int | None:
-        """Collisions until the next firing, or ``None``."""
+        """Collisions until the next firing, or ``None``.
+
+        Parameters
+        ----------
+        sim : Simulation
+
+        Returns
+        -------
+        int or None
+        """
         return None
 
     def due(self, sim, now: float) -> bool:
-        """Whether to fire at this stop (and, if so, set the next firing)."""
+        """Whether to fire at this stop (and, if so, set the next firing).
+
+        Parameters
+        ----------
+        sim : Simulation
+        now : float
+            The wall clock (``time.monotonic()``) at this stop.
+
+        Returns
+        -------
+        bool
+        """
         return False
 
 
@@ -69,14 +117,18 @@ class Every(Trigger):
     Parameters
     ----------
     dt : float, optional
-        Simulated time, > 0: at ``t0 + dt, t0 + 2 dt, ...`` from the run's start.
+        Simulated time, > 0: at ``t0 + dt, t0 + 2 dt, ...`` with ``t0`` the run's start.
     collisions : int, optional
         Disk-disk collisions, >= 1.
     seconds : float, optional
         Wall-clock time, > 0.
+    start : float, optional
+        With ``dt`` only: the origin ``t0`` of the times instead of the run's start;
+        the run fires at the times ``t0 + k dt`` (``k >= 1``) after its start.  A run
+        continued from a checkpoint keeps the times of the run it continues this way.
     """
 
-    def __init__(self, dt=None, collisions=None, seconds=None) -> None:
+    def __init__(self, dt=None, collisions=None, seconds=None, *, start=None) -> None:
         given = [name for name, v in (("dt", dt), ("collisions", collisions),
                                       ("seconds", seconds)) if v is not None]
         if len(given) != 1:
@@ -86,10 +138,21 @@ class Every(Trigger):
         self.collisions = None if collisions is None else as_count("collisions", collisions,
                                                                    minimum=1)
         self.seconds = None if seconds is None else as_positive_float("seconds", seconds)
+        if start is not None and dt is None:
+            raise TypeError("Every(start=...) goes with dt= (times of simulated time)")
+        self.start = None if start is None else float(as_float_array("start", start, ()))
 
     def _start(self, sim) -> None:
-        self._t0 = sim.time
+        self._t0 = sim.time if self.start is None else self.start
         self._k = 1
+        if self.start is not None:
+            # The first k >= 1 with t0 + k dt after now, computed as the times are.
+            t = sim.time
+            self._k = max(1, math.floor((t - self._t0) / self.dt) + 1)
+            while self._k > 1 and self._t0 + (self._k - 1) * self.dt > t:
+                self._k -= 1
+            while self._t0 + self._k * self.dt <= t:
+                self._k += 1
         self._c_next = sim.counts.collisions + (self.collisions or 0)
         self._clock = _time.monotonic()
 
@@ -144,13 +207,114 @@ class At(Trigger):
         return fired
 
 
+class Blocks(Trigger):
+    """Fire at the ends of ``blocks`` equal blocks of a window of ``duration``.
+
+    The window starts at ``start`` (default: the start of the first run that uses the
+    trigger; it stays there for later runs), and block ``b`` ends at
+    ``start + duration * b / blocks`` (the last at ``start + duration`` exactly), the
+    times at which :func:`edmd2d.measurements.measure` cuts its window.  If ``start``
+    lies after the run's start, the trigger fires at ``start`` too (the window opens:
+    a :class:`Measure` then takes its first boundary).  Two triggers made with the same
+    arguments fire at the same times, so a :class:`Callback` can follow a
+    :class:`Measure` block by block.
+
+    Parameters
+    ----------
+    duration : float
+        Length of the window, > 0.
+    blocks : int, default 10
+        Number of blocks, >= 1.
+    start : float, optional
+        Start of the window.
+    count : int, optional
+        Blocks to fire, default ``blocks``; more continue at the same spacing after
+        the window (block ``b`` ends at ``start + duration * b / blocks``).
+    """
+
+    def __init__(self, duration, blocks=10, *, start=None, count=None) -> None:
+        self.duration = as_positive_float("duration", duration)
+        self.blocks = as_count("blocks", blocks, minimum=1)
+        self.start = None if start is None else float(as_float_array("start", start, ()))
+        self.count = self.blocks if count is None else as_count("count", count, minimum=1)
+        self._t0 = self.start
+        self._b = 0
+
+    @property
+    def window_start(self) -> float | None:
+        """The start of the window (``None`` before a run has started the trigger)."""
+        return self._t0
+
+    def elapsed(self, b: int) -> float:
+        """The window's length after ``b`` blocks: ``duration * b / blocks``
+        (``duration`` exactly for ``b == blocks``).
+
+        Parameters
+        ----------
+        b : int
+
+        Returns
+        -------
+        float
+        """
+        return self.duration if b == self.blocks else self.duration * b / self.blocks
+
+    def edge(self, b: int) -> float:
+        """The end of block ``b`` (``b = 0``: the start of the window).
+
+        Parameters
+        ----------
+        b : int
+
+        Returns
+        -------
+        float
+        """
+        if self._t0 is None:
+            raise ValueError("the window has no start yet: give start= or run first")
+        if b == 0:
+            return self._t0
+        return (self._t0 + self.duration * b / self.blocks if b != self.blocks
+                else self._t0 + self.duration)
+
+    def _start(self, sim) -> None:
+        if self._t0 is None:
+            self._t0 = sim.time
+        self._b = 0
+        while self._b <= self.count and self.edge(self._b) <= sim.time:
+            self._b += 1
+
+    def next_time(self) -> float:
+        return self.edge(self._b) if self._b <= self.count else math.inf
+
+    def due(self, sim, now: float) -> bool:
+        fired = False
+        while self._b <= self.count and self.edge(self._b) <= sim.time:
+            self._b += 1
+            fired = True
+        return fired
+
+
 class Operation:
-    """Something done to or with the simulation when ``trigger`` fires."""
+    """Something done to or with the simulation when ``trigger`` fires.
+
+    Parameters
+    ----------
+    trigger : Trigger
+    """
 
     def __init__(self, trigger: Trigger) -> None:
         if not isinstance(trigger, Trigger):
             raise TypeError(f"trigger must be an edmd2d.operations.Trigger, got {trigger!r}")
         self.trigger = trigger
+
+    def begin(self, sim) -> None:
+        """Called once when a run starts, after the triggers have started.
+
+        Parameters
+        ----------
+        sim : Simulation
+        """
 
     def __call__(self, sim) -> None:  # pragma: no cover - the subclasses' job
         raise NotImplementedError
@@ -160,7 +324,14 @@ class Operation:
 
 
 class Callback(Operation):
-    """Call ``function(sim)`` when ``trigger`` fires."""
+    """Call ``function(sim)`` when ``trigger`` fires.
+
+    Parameters
+    ----------
+    function : callable
+        Called with the simulation.
+    trigger : Trigger
+    """
 
     def __init__(self, function, trigger: Trigger) -> None:
         super().__init__(trigger)
@@ -172,9 +343,374 @@ class Callback(Operation):
         self.function(sim)
 
 
+class Measure(Operation):
+    """Measure pressure, temperature, collision rates and wall forces over a run, in
+    blocks: the quantities of :func:`edmd2d.measurements.measure`.
+
+    The window opens when the run starts (or, with a :class:`Blocks` trigger whose
+    window starts later, when it does), and each firing of ``trigger`` ends a block.
+    Nothing is sampled in between: the engine accumulates the collision virial and the
+    wall impulses exactly at every event, and the operation keeps these sums, the
+    temperatures and the counts at the block boundaries only.  :meth:`result` gives
+    the :class:`~edmd2d.measurements.Measurement` over the blocks ended so far, at any
+    time, so a table can show it growing.  A Measure used in a second run goes on with
+    the same window (the accumulated sums are cumulative).
+
+    With :class:`Blocks` the blocks have the length ``duration / blocks`` exactly and
+    the result is bit for bit that of :func:`~edmd2d.measurements.measure`; with other
+    triggers each block's length is the time between its boundaries.
+
+    Parameters
+    ----------
+    trigger : Trigger
+        The ends of the blocks, e.g. ``Blocks(duration=50.0, blocks=10)`` or
+        ``Every(dt=5.0)``.
+    area : float, optional
+        The area of the pressure, > 0; default the container's
+        (:func:`edmd2d.measurements.container_area`, taken when the window opens).
+
+    Examples
+    --------
+    >>> import edmd2d as ed
+    >>> from edmd2d import operations as op
+    >>> sim = ed.make_gas(200, 0.3, seed=2)
+    >>> window = op.Measure(op.Blocks(duration=4.0, blocks=4))
+    >>> _ = sim.run(until=4.0, operations=[window])
+    >>> m = window.result()
+    >>> m.blocks, round(m.temperature, 9)
+    (4, 1.0)
+    >>> m.pressure == ed.make_gas(200, 0.3, seed=2).measure(duration=4.0, blocks=4).pressure
+    True
+    """
+
+    def __init__(self, trigger: Trigger, *, area: float | None = None) -> None:
+        super().__init__(trigger)
+        self._area = None if area is None else as_positive_float("area", area)
+        self._edges: list[dict] = []
+        self._meta: dict | None = None  # (n, n_all, dof, area, area_source) at the start
+        self._movable = None
+        self._box = None
+        self._walls = None
+
+    @property
+    def blocks(self) -> int:
+        """The number of blocks ended so far."""
+        return max(len(self._edges) - 1, 0)
+
+    @property
+    def times(self) -> np.ndarray:
+        """The block boundaries so far (the first is the window's start), shape (B + 1,)."""
+        return np.array([e["time"] for e in self._edges])
+
+    def begin(self, sim) -> None:
+        """Open the window at the run's start (or wait for the start of the window of
+        a :class:`Blocks` trigger), or check that a window already open goes on with
+        the same simulation.
+
+        Parameters
+        ----------
+        sim : Simulation
+
+        Raises
+        ------
+        ValueError
+            If the window of a :class:`Blocks` trigger started before the run and
+            nothing was measured then, or ``sim`` is not the simulation measured so far.
+        """
+        self._box, self._walls = sim.box, sim.walls
+        self._movable = np.isfinite(sim.masses)
+        if self._edges:
+            if sim.time < self._edges[-1]["time"] or len(sim) != self._meta["n_all"]:
+                raise ValueError(
+                    f"this Measure's window has a boundary at t={self._edges[-1]['time']} "
+                    f"for {self._meta['n_all']} disks; the simulation (t={sim.time}, "
+                    f"{len(sim)} disks) is not the one it measured")
+            return
+        if isinstance(self.trigger, Blocks):
+            t0 = self.trigger.window_start
+            if t0 < sim.time:
+                raise ValueError(
+                    f"the window of this Measure starts at t={t0}, before the run's start "
+                    f"at t={sim.time}: nothing was measured there (give Blocks a start not "
+                    "before the run's, or continue a Measure made with Measure.from_state)")
+            if t0 > sim.time:
+                return  # (the trigger fires at the window's start)
+        self._open(sim)
+
+    def _open(self, sim) -> None:
+        if self._area is None:
+            area, source = _measurements._container(sim)
+        else:
+            area, source = self._area, "given"
+        n = int(self._movable.sum())
+        box = sim.box
+        self._meta = {"n": n, "n_all": len(sim), "area": area, "area_source": source,
+                      "dof": _measurements.degrees_of_freedom(sim)[0],
+                      "box": [box.width, box.height, *box.periodic],
+                      "walls": [[*w.start, *w.end] for w in sim.walls]}
+        self._edges.append(_measurements._edge(sim, self._movable))
+
+    def __call__(self, sim) -> None:
+        if not self._edges:
+            self._open(sim)
+        else:
+            self._edges.append(_measurements._edge(sim, self._movable))
+
+    def result(self):
+        """The measurement over the blocks ended so far.
+
+        Returns
+        -------
+        Measurement
+
+        Raises
+        ------
+        ValueError
+            If no block has ended yet.
+        """
+        k = self.blocks
+        if k < 1:
+            raise ValueError("no block of this measurement has ended yet")
+        if isinstance(self.trigger, Blocks):
+            tau = self.trigger.duration / self.trigger.blocks
+            duration = self.trigger.elapsed(k)
+        else:
+            times = self.times
+            tau = np.diff(times)
+            duration = float(times[-1] - times[0])
+        meta = self._meta
+        return _measurements._from_edges(
+            self._edges, tau, duration, n=meta["n"], n_all=meta["n_all"], dof=meta["dof"],
+            area=meta["area"], area_source=meta["area_source"], box=self._box,
+            walls=self._walls)
+
+    def state(self) -> dict:
+        """What the measurement holds, in plain JSON-able values (floats kept exactly),
+        to go on in another process with :meth:`from_state` (e.g. in a checkpoint's
+        ``metadata``).
+
+        Returns
+        -------
+        dict
+        """
+        window = None
+        if isinstance(self.trigger, Blocks):
+            t = self.trigger
+            window = {"duration": t.duration, "blocks": t.blocks, "start": t.window_start,
+                      "count": t.count}
+        return {"edges": [_encode(e) for e in self._edges], "meta": self._meta,
+                "area": self._area, "window": window}
+
+    @classmethod
+    def from_state(cls, state: dict, trigger: Trigger | None = None, *,
+                   count: int | None = None) -> Measure:
+        """A Measure that goes on from :meth:`state`.
+
+        Parameters
+        ----------
+        state : dict
+            From :meth:`state`.
+        trigger : Trigger, optional
+            Default: the :class:`Blocks` of the saved window, at its start.
+        count : int, optional
+            With the default trigger, the number of blocks to end in all (default the
+            saved trigger's).
+
+        Returns
+        -------
+        Measure
+        """
+        if trigger is None:
+            window = state.get("window")
+            if window is None:
+                raise ValueError("this state has no window of Blocks: pass its trigger")
+            trigger = Blocks(window["duration"], window["blocks"], start=window["start"],
+                             count=window["count"] if count is None else count)
+        from .geometry import Box, Wall
+
+        out = cls(trigger, area=state["area"])
+        out._edges = [_decode(e) for e in state["edges"]]
+        out._meta = meta = state["meta"]
+        if meta is not None:  # (the box and walls: a result needs no simulation)
+            width, height, px, py = meta["box"]
+            out._box = Box(width, height, periodic=(px, py))
+            out._walls = tuple(Wall((x0, y0), (x1, y1)) for x0, y0, x1, y1 in meta["walls"])
+        return out
+
+
+class RecordTrajectory(Operation):
+    """Record the disks' positions (and, if asked, velocities) at each firing.
+
+    Parameters
+    ----------
+    trigger : Trigger
+    unwrapped : bool, default True
+        Unwrapped positions (:attr:`~edmd2d.Simulation.unwrapped_positions`, periodic
+        wraps undone, for displacements), else positions wrapped into the box.
+    velocities : bool, default False
+        Record the velocities too.
+    include_start : bool, default False
+        Also record the state at the run's start.
+
+    Examples
+    --------
+    >>> import edmd2d as ed
+    >>> from edmd2d import operations as op
+    >>> rec = op.RecordTrajectory(op.Every(dt=0.5), include_start=True)
+    >>> _ = ed.make_gas(50, 0.3, seed=1).run(until=1.0, operations=[rec])
+    >>> rec.times.tolist(), rec.positions.shape
+    ([0.0, 0.5, 1.0], (3, 50, 2))
+    """
+
+    def __init__(self, trigger: Trigger, *, unwrapped: bool = True, velocities: bool = False,
+                 include_start: bool = False) -> None:
+        super().__init__(trigger)
+        self.unwrapped = bool(unwrapped)
+        self.record_velocities = bool(velocities)
+        self.include_start = bool(include_start)
+        self._times: list[float] = []
+        self._pos: list[np.ndarray] = []
+        self._vel: list[np.ndarray] = []
+
+    def begin(self, sim) -> None:
+        """Record the state at the run's start if ``include_start`` (and nothing was
+        recorded yet).
+
+        Parameters
+        ----------
+        sim : Simulation
+        """
+        if self.include_start and not self._times:
+            self(sim)
+
+    def __call__(self, sim) -> None:
+        self._times.append(sim.time)
+        self._pos.append(sim.unwrapped_positions if self.unwrapped else sim.positions)
+        if self.record_velocities:
+            self._vel.append(sim.velocities)
+
+    @property
+    def times(self) -> np.ndarray:
+        """The times of the frames, shape (F,)."""
+        return np.array(self._times, dtype=float)
+
+    @property
+    def positions(self) -> np.ndarray:
+        """The positions, shape (F, N, 2)."""
+        return _stack(self._pos)
+
+    @property
+    def velocities(self) -> np.ndarray | None:
+        """The velocities, shape (F, N, 2), or ``None`` if not recorded."""
+        return _stack(self._vel) if self.record_velocities else None
+
+
+class Snapshot:
+    """What a picture of a simulation shows at one time: read-only, synchronized copies.
+
+    It has the attributes of a :class:`~edmd2d.Simulation` that :mod:`edmd2d.viz`
+    reads, so that recorded frames can be drawn and animated after the run.
+
+    Parameters
+    ----------
+    sim : Simulation
+        Copied at its current time.
+
+    Attributes
+    ----------
+    time : float
+    positions, unwrapped_positions, velocities : ndarray, shape (N, 2)
+    radii, masses : ndarray, shape (N,)
+    species : ndarray of int, shape (N,)
+    box : Box
+    walls : tuple of Wall
+    counts : Counts
+    """
+
+    __slots__ = ("time", "positions", "unwrapped_positions", "velocities", "radii",
+                 "masses", "species", "box", "walls", "counts")
+
+    def __init__(self, sim) -> None:
+        self.time = sim.time
+        self.positions = sim.positions
+        self.unwrapped_positions = sim.unwrapped_positions
+        self.velocities = sim.velocities
+        self.radii = sim.radii
+        self.masses = sim.masses
+        self.species = sim.species
+        self.box = sim.box
+        self.walls = sim.walls
+        self.counts = sim.counts
+
+    def __len__(self) -> int:
+        return len(self.positions)
+
+    @property
+    def n(self) -> int:
+        """Number of disks."""
+        return len(self.positions)
+
+    def __repr__(self) -> str:
+        return f"Snapshot(t={self.time:g}, n={self.n}, collisions={self.counts.collisions})"
+
+
+class RecordFrames(Operation):
+    """Keep a :class:`Snapshot` at each firing: the frames of an animation, drawn after
+    the run with :func:`edmd2d.viz.animate_frames` (and as often as wanted).
+
+    Parameters
+    ----------
+    trigger : Trigger
+        When to take a frame, e.g. ``Every(dt=1 / 30)``.
+    include_start : bool, default True
+        Also take a frame at the run's start.
+
+    Examples
+    --------
+    >>> import edmd2d as ed
+    >>> from edmd2d import operations as op
+    >>> frames = op.RecordFrames(op.Every(dt=0.25))
+    >>> _ = ed.make_gas(50, 0.3, seed=1).run(until=1.0, operations=[frames])
+    >>> [round(f.time, 2) for f in frames.frames]
+    [0.0, 0.25, 0.5, 0.75, 1.0]
+    """
+
+    def __init__(self, trigger: Trigger, *, include_start: bool = True) -> None:
+        super().__init__(trigger)
+        self.include_start = bool(include_start)
+        self.frames: list[Snapshot] = []
+
+    def begin(self, sim) -> None:
+        """Take a frame at the run's start if ``include_start`` (and none was taken
+        yet).
+
+        Parameters
+        ----------
+        sim : Simulation
+        """
+        if self.include_start and not self.frames:
+            self(sim)
+
+    def __call__(self, sim) -> None:
+        self.frames.append(Snapshot(sim))
+
+    @property
+    def times(self) -> np.ndarray:
+        """The times of the frames, shape (F,)."""
+        return np.array([f.time for f in self.frames], dtype=float)
+
+
 class WriteGSD(Operation):
     """Append a frame to the GSD file ``path`` when ``trigger`` fires (see
-    :class:`edmd2d.io.gsd.Writer`; ``mode`` ``"w"`` or ``"a"``)."""
+    :class:`edmd2d.io.gsd.Writer`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    trigger : Trigger
+    mode : {"w", "a"}, default "w"
+        Create the file (replacing one that exists) or append to it.
+    """
 
     def __init__(self, path, trigger: Trigger, mode: str = "w") -> None:
         super().__init__(trigger)
@@ -191,14 +727,29 @@ class WriteGSD(Operation):
 
 class Checkpoint(Operation):
     """Write a checkpoint to ``path`` when ``trigger`` fires, replacing the previous
-    one atomically (see :func:`edmd2d.checkpoint.save`)."""
+    one atomically (see :func:`edmd2d.checkpoint.save`).
 
-    def __init__(self, path, trigger: Trigger) -> None:
+    Parameters
+    ----------
+    path : str or os.PathLike
+    trigger : Trigger
+    metadata : dict or callable, optional
+        Stored in the checkpoint (:func:`edmd2d.checkpoint.save`); a callable is called
+        with the simulation at each firing and returns the dict, e.g. the state of a
+        :class:`Measure` of the same run (list the Checkpoint after the operations
+        whose state it saves, so that it sees them at the same stop).
+    """
+
+    def __init__(self, path, trigger: Trigger, *, metadata=None) -> None:
         super().__init__(trigger)
+        if metadata is not None and not (callable(metadata) or isinstance(metadata, dict)):
+            raise TypeError(f"metadata must be a dict or a callable, got {metadata!r}")
         self.path = path
+        self.metadata = metadata
 
     def __call__(self, sim) -> None:
-        _checkpoint.save(sim, self.path)
+        meta = self.metadata(sim) if callable(self.metadata) else self.metadata
+        _checkpoint.save(sim, self.path, metadata=meta)
 
 
 def run(sim, until=None, collisions=None, operations=(), progress=False):
@@ -212,8 +763,10 @@ def run(sim, until=None, collisions=None, operations=(), progress=False):
     collisions : int, optional
         Stop after this many further collisions (whichever of the two comes first).
     operations : sequence of Operation
-    progress : bool, default False
-        A progress bar over the run (:mod:`edmd2d.progress`).
+    progress : bool or tqdm bar, default False
+        A progress bar over the run (:mod:`edmd2d.progress`), of the simulated time
+        with the collisions per second (or of the collisions, with ``collisions``
+        alone); a bar passed in is advanced the same way.
 
     Returns
     -------
@@ -234,14 +787,16 @@ def run(sim, until=None, collisions=None, operations=(), progress=False):
         raise ValueError(f"until={t_end} is earlier than the current time {sim.time}")
     c_end = math.inf if collisions is None else (
         sim.counts.collisions + as_count("collisions", collisions))
-    for operation in operations:
-        operation.trigger._start(sim)
-    clocked = any(isinstance(o.trigger, Every) and o.trigger.seconds is not None
-                  for o in operations)
     by_time = until is not None
     bar, owned = _progress.bar(progress, total=(t_end - sim.time) if by_time else collisions,
                                unit="time" if by_time else "coll", desc="run")
     try:
+        for operation in operations:
+            operation.trigger._start(sim)
+        for operation in operations:
+            operation.begin(sim)
+        clocked = any(isinstance(o.trigger, Every) and o.trigger.seconds is not None
+                      for o in operations)
         while True:
             stop = min([t_end] + [o.trigger.next_time() for o in operations])
             left = [o.trigger.collisions_left(sim) for o in operations]
@@ -251,13 +806,16 @@ def run(sim, until=None, collisions=None, operations=(), progress=False):
                 budget = min(budget, min(left))
             if clocked:
                 budget = min(budget, WALL_CLOCK_SLICE)
-            t_before, c_before = sim.time, sim.counts.collisions
-            if budget > 0:
+            c_before = sim.counts.collisions
+            # (A stop at the current time needs no advance: its events are done.)
+            if budget > 0 and not stop <= sim.time:
+                # With a bar over the simulated time, advance moves it as it runs (and
+                # shows the collisions per second); a bar of collisions moves here.
                 sim.advance(until=None if math.isinf(stop) else stop,
-                            collisions=None if math.isinf(budget) else int(budget))
-            if bar is not None:
-                bar.update((sim.time - t_before) if by_time
-                           else sim.counts.collisions - c_before)
+                            collisions=None if math.isinf(budget) else int(budget),
+                            progress=bar if bar is not None and by_time else False)
+            if bar is not None and not by_time:
+                bar.update(sim.counts.collisions - c_before)
             now = _time.monotonic()
             for operation in operations:
                 if operation.trigger.due(sim, now):
@@ -269,3 +827,40 @@ def run(sim, until=None, collisions=None, operations=(), progress=False):
             bar.close()
         for operation in operations:
             operation.close()
+
+
+def _stack(frames: list) -> np.ndarray:
+    if not frames:
+        return np.zeros((0, 0, 2))
+    return np.stack(frames)
+
+
+def _encode(edge: dict) -> dict:
+    """A measurement boundary (:func:`edmd2d.measurements._edge`) in JSON-able values:
+    arrays as ``{"dtype", "shape", "data"}``; floats as they are (JSON keeps a float64
+    exactly through its shortest repr)."""
+
+    def enc(value):
+        if isinstance(value, dict):
+            return {k: enc(v) for k, v in value.items()}
+        if isinstance(value, np.ndarray):
+            return {"dtype": value.dtype.str, "shape": list(value.shape),
+                    "data": value.ravel().tolist()}
+        if isinstance(value, np.generic):
+            return value.item()
+        return value
+
+    out = enc(edge)
+    json.dumps(out)  # (fails here, not in the middle of writing a file)
+    return out
+
+
+def _decode(edge: dict) -> dict:
+    def dec(value):
+        if isinstance(value, dict):
+            if set(value) == {"dtype", "shape", "data"}:
+                return np.array(value["data"], dtype=value["dtype"]).reshape(value["shape"])
+            return {k: dec(v) for k, v in value.items()}
+        return value
+
+    return dec(edge)

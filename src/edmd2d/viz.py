@@ -1,11 +1,14 @@
 """Pictures and animations of a :class:`~edmd2d.Simulation` with matplotlib.
 
 This is the only module of edmd2d that imports matplotlib (``pip install 'edmd2d[viz]'``;
-``import edmd2d`` alone never does).  Three functions:
+``import edmd2d`` alone never does).  Four functions:
 
 - :func:`draw` -- a still frame of the current state;
 - :func:`animate` -- a :class:`matplotlib.animation.FuncAnimation` that advances the
   simulation to exact, equally spaced frame times (``sim.advance(until=t_k)``);
+- :func:`animate_frames` -- an animation of frames recorded during a run by
+  :class:`edmd2d.operations.RecordFrames` (while the same run measures or writes
+  files), which can be shown and saved any number of times;
 - :func:`save` -- write an animation to ``.gif`` (Pillow) or ``.mp4`` (ffmpeg, found on the
   PATH or supplied by ``pip install 'edmd2d[video]'``), or a still to ``.png``/``.pdf``/...,
   with a progress bar (tqdm).  The animation's own ``save`` method is the same function.
@@ -58,9 +61,11 @@ from matplotlib.collections import EllipseCollection, LineCollection
 from matplotlib.transforms import Bbox, TransformedBbox
 
 from ._validate import as_count, as_positive_float, indices_where
+from .operations import RecordFrames, Snapshot
 from .simulation import Simulation
 
-__all__ = ["draw", "animate", "save", "SimulationAnimation", "TextProgress"]
+__all__ = ["draw", "animate", "animate_frames", "save", "SimulationAnimation",
+           "FramesAnimation", "TextProgress"]
 
 _COLOR_MODES = ("speed", "species", "mass")
 _VIDEO_SUFFIXES = (".mp4", ".m4v", ".mov", ".mkv")
@@ -107,7 +112,7 @@ def draw(
 
     Parameters
     ----------
-    sim : Simulation
+    sim : Simulation or edmd2d.operations.Snapshot
         What to draw; it is only read, never advanced.
     ax : matplotlib Axes, optional
         Where to draw; a new figure sized to the box's aspect ratio by default.  The axes
@@ -274,6 +279,74 @@ def animate(
                    trail_color=trail_color, show_time=show_time, **style)
     return SimulationAnimation(scene, frame_times, fps, blit=blit)
 
+def animate_frames(
+    frames,
+    fps: float = 30,
+    *,
+    color_by: ColorBy = "speed",
+    trail: int = 0,
+    trail_disks=None,
+    trail_color="k",
+    show_time: bool = True,
+    ax: Axes | None = None,
+    blit: bool = True,
+    **style,
+) -> FramesAnimation:
+    """An animation of frames recorded during a run (:class:`~edmd2d.operations.RecordFrames`).
+
+    The frames were taken at their exact times while the simulation ran (with the
+    other operations of the same run: measurements, files), so the animation only
+    draws them: it can be shown and saved as often as wanted, and the simulation is
+    not touched.  It looks as :func:`animate` would at the same times.
+
+    Parameters
+    ----------
+    frames : RecordFrames or sequence of Snapshot
+        The frames, in order (at least one).
+    fps : float, default 30
+        Frames per second of animation.
+    color_by, trail, trail_disks, trail_color, show_time, ax, blit, **style
+        As for :func:`animate`; a callable ``color_by`` is called with each
+        :class:`~edmd2d.operations.Snapshot`.
+
+    Returns
+    -------
+    FramesAnimation
+        Save it with :func:`save` or its ``save`` method.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For frames that are not snapshots, no frames, frames of different numbers of
+        disks, and the arguments :func:`animate` refuses.
+
+    Examples
+    --------
+    >>> import matplotlib
+    >>> matplotlib.use("Agg")
+    >>> import edmd2d as ed
+    >>> from edmd2d import operations as op, viz
+    >>> rec = op.RecordFrames(op.Every(dt=0.25))
+    >>> _ = ed.make_gas(30, 0.3, seed=1).run(until=1.0, operations=[rec])
+    >>> anim = viz.animate_frames(rec, fps=10)
+    >>> anim.frame_times.tolist()
+    [0.0, 0.25, 0.5, 0.75, 1.0]
+    """
+    shots = list(frames.frames if isinstance(frames, RecordFrames) else frames)
+    if not shots:
+        raise ValueError("animate_frames needs at least one frame")
+    for k, shot in enumerate(shots):
+        if not isinstance(shot, Snapshot):
+            raise TypeError(f"frames[{k}] must be an edmd2d.operations.Snapshot, got "
+                            f"{type(shot).__name__}")
+        if shot.n != shots[0].n:
+            raise ValueError(f"frames[{k}] has {shot.n} disks, frames[0] {shots[0].n}")
+    fps = as_positive_float("fps", fps)
+    trail = as_count("trail", trail)
+    scene = _Scene(shots[0], ax, color_by=color_by, trail=trail, trail_disks=trail_disks,
+                   trail_color=trail_color, show_time=show_time, **style)
+    return FramesAnimation(scene, shots, fps, blit=blit)
+
 
 class SimulationAnimation(manim.FuncAnimation):
     """The animation made by :func:`animate` (a :class:`~matplotlib.animation.FuncAnimation`).
@@ -396,6 +469,49 @@ class SimulationAnimation(manim.FuncAnimation):
         )
 
 
+class FramesAnimation(SimulationAnimation):
+    """The animation made by :func:`animate_frames`: recorded frames, drawn in order.
+
+    It saves like :class:`SimulationAnimation` (the same writers and checks) but runs
+    no simulation, so it can be played and saved again.
+
+    Attributes
+    ----------
+    frames : list of Snapshot
+        The frames.
+    frame_times : numpy.ndarray
+        Simulation time of each frame.
+    fps : float
+        Frames per second.
+    ax : matplotlib Axes
+        The axes drawn on.
+    """
+
+    def __init__(self, scene: _Scene, frames: list, fps: float, *, blit: bool):
+        self.frames = frames
+        super().__init__(scene, np.array([f.time for f in frames], dtype=float), fps,
+                         blit=blit)
+
+    def goto_frame(self, k: int) -> list:
+        """Show frame ``k``; returns the artists that changed.
+
+        Parameters
+        ----------
+        k : int
+
+        Returns
+        -------
+        list
+        """
+        if k == 0:
+            self._scene.reset()
+        self._scene.sim = self.sim = self.frames[k]
+        return self._scene.update()
+
+    def _check_can_start(self, k: int = 0) -> None:
+        """Recorded frames can always be drawn again."""
+
+
 def save(
     obj,
     path,
@@ -414,9 +530,10 @@ def save(
 
     Parameters
     ----------
-    obj : SimulationAnimation, matplotlib Animation or Simulation
-        An animation is rendered frame by frame (running its simulation forward); a
-        simulation is drawn with :func:`draw` and saved as a still.
+    obj : SimulationAnimation, matplotlib Animation, Simulation or Snapshot
+        An animation is rendered frame by frame (running its simulation forward, or
+        drawing its recorded frames); a simulation or a snapshot is drawn with
+        :func:`draw` and saved as a still.
     path : str or Path
         For an animation ``.gif`` (written with Pillow) or ``.mp4``/``.m4v``/``.mov``/
         ``.mkv`` (H.264 through ffmpeg: the ``ffmpeg`` on the PATH, or else the binary
@@ -477,7 +594,7 @@ def save(
     '.png'
     """
     path = Path(path)
-    if isinstance(obj, Simulation):
+    if isinstance(obj, (Simulation, Snapshot)):
         if path.suffix.lower() in _VIDEO_SUFFIXES + _GIF_SUFFIXES:
             raise ValueError(
                 f"{path.name}: a Simulation is saved as a still image (.png, .pdf, .svg); "
@@ -729,7 +846,7 @@ class _Scene:
         trail_disks=None,
         trail_color="k",
     ) -> None:
-        if not isinstance(sim, Simulation):
+        if not isinstance(sim, (Simulation, Snapshot)):
             raise TypeError(f"sim must be an edmd2d.Simulation, got {type(sim).__name__}")
         if ax is not None and not isinstance(ax, Axes):
             raise TypeError(f"ax must be a matplotlib Axes or None, got {type(ax).__name__}")
@@ -829,6 +946,12 @@ class _Scene:
                 fontproperties=label_font, annotation_clip=False,
             )
             self.text.set_gid("edmd2d-text")
+
+    def reset(self) -> None:
+        """Forget the trails (an animation of recorded frames starting again)."""
+        if self.trails is not None:
+            self._trail_hist.clear()
+            self._trail_t = -math.inf
 
     def update(self) -> list:
         """Show the simulation's current state; returns the artists that changed."""

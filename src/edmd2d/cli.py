@@ -1,0 +1,649 @@
+"""The command line: ``edmd2d run``, ``edmd2d resume`` and ``edmd2d info``.
+
+``edmd2d run CONFIG.toml`` builds the system a TOML configuration describes (see
+:mod:`edmd2d.config` and ``examples/gas.toml``), runs it through its equilibration and
+its measurement window in one :meth:`~edmd2d.Simulation.run`, and writes into an output
+directory:
+
+- ``config.toml``, a copy of the configuration;
+- ``trajectory.gsd``, a GSD frame every ``gsd_every`` (with ``[output] gsd_every``);
+- ``checkpoint.edmd2d``, a checkpoint every ``checkpoint_every`` of simulated time
+  and/or ``checkpoint_minutes`` of wall-clock time, and always at the end, holding in
+  its metadata the configuration, the seed, the end time and the state of the
+  measurement, so that ``edmd2d resume`` can go on from it;
+- ``results.json``: the measured values with their error bars, the table, the
+  configuration, the edmd2d version and the seed.
+
+While it runs it prints a table, one row per block of the measurement window: the
+time, the collisions per second of wall-clock time, and the temperature and the
+compressibility factor ``Z`` over the window so far with their error bars (the
+:class:`~edmd2d.operations.Measure` of the run, read after each block), under a
+progress bar (``--no-progress`` hides it).
+
+``edmd2d resume CHECKPOINT`` continues a run from its checkpoint, bit for bit as if it
+had not stopped (``--until T`` to run to another end); ``edmd2d info FILE`` describes
+a GSD file or a checkpoint.  Mistakes in the input (a misspelt key, a value of the
+wrong type, a missing file) end with a message naming the key and its line, on standard
+error, and exit code 2; a simulation that fails (an inelastic collapse, say) with its
+message and exit code 1.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import math
+import os
+import secrets
+import shutil
+import sys
+import tempfile
+import time as _time
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+from . import __version__
+from . import checkpoint as _checkpoint
+from . import config as _config
+from . import operations as _op
+
+__all__ = ["main", "UserError", "CONFIG_FILE", "GSD_FILE", "CHECKPOINT_FILE",
+           "RESULTS_FILE"]
+
+CONFIG_FILE = "config.toml"
+GSD_FILE = "trajectory.gsd"
+CHECKPOINT_FILE = "checkpoint.edmd2d"
+RESULTS_FILE = "results.json"
+# The kind of metadata `edmd2d run` puts in its checkpoints, and its version.
+_RUN_FORMAT = "edmd2d-run"
+_RUN_VERSION = 1
+
+
+class UserError(Exception):
+    """A mistake in what the command line was given: reported without a traceback."""
+
+
+def _say(text: str, stream=None) -> None:
+    """Print ``text`` to ``stream`` (standard output by default).  If the reader has
+    gone (``edmd2d run ... | head``), further output is dropped and the run goes on
+    to write its files."""
+    stream = sys.stdout if stream is None else stream
+    try:
+        print(text, file=stream, flush=True)
+    except BrokenPipeError:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, stream.fileno())
+        os.close(devnull)
+
+
+def main(argv=None) -> int:
+    """Run the command line.
+
+    Parameters
+    ----------
+    argv : list of str, optional
+        The arguments (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit code: 0 on success, 2 for a mistake in the input (a message on
+        standard error), 1 for a simulation that failed, 130 when interrupted.
+    """
+    parser = _parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # (--help, or argparse's own message on a bad option)
+        return exc.code if isinstance(exc.code, int) else 0
+    if args.command is None:
+        parser.print_help(sys.stderr)
+        return 2
+    try:
+        return args.handler(args)
+    except (UserError, _config.ConfigError) as exc:
+        _say(f"edmd2d: error: {exc}", sys.stderr)
+        return 2
+    except RuntimeError as exc:
+        _say(f"edmd2d: the simulation failed: {exc}", sys.stderr)
+        return 1
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="edmd2d",
+        description="Exact event-driven simulation of hard disks in two dimensions: run a "
+                    "TOML configuration, resume a run from its checkpoint, or describe a "
+                    "GSD file or a checkpoint.",
+        epilog="See 'edmd2d COMMAND --help' for each command.")
+    parser.add_argument("--version", action="version", version=f"edmd2d {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+
+    run = sub.add_parser(
+        "run", help="run a configuration",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        description="Build the system of a TOML configuration, equilibrate it, measure it "
+                    "over its window in blocks (one row of the table each) and write the "
+                    "GSD trajectory, checkpoints and results.json into the output "
+                    "directory (files of an earlier run there are replaced).",
+        epilog="A configuration, every table and key (see examples/gas.toml):\n\n"
+               + _config_example())
+    run.add_argument("config", type=Path, metavar="CONFIG.toml", help="the configuration")
+    run.add_argument("--output", "-o", type=Path, metavar="DIR",
+                     help="the output directory (default: CONFIG-run/ next to the "
+                          "configuration)")
+    run.add_argument("--until", type=float, metavar="T",
+                     help="stop at the simulated time T, before the configuration's end "
+                          "(continue later with 'edmd2d resume')")
+    run.add_argument("--no-progress", action="store_true", help="no progress bar")
+    run.set_defaults(handler=_cmd_run)
+
+    resume = sub.add_parser(
+        "resume", help="continue a run from its checkpoint",
+        description="Continue a run of 'edmd2d run' from its checkpoint, bit for bit as if it "
+                    "had not stopped: the same positions, velocities, counts and measured "
+                    "values as an uninterrupted run.  The GSD trajectory keeps its frames "
+                    "up to the checkpoint and goes on.")
+    resume.add_argument("checkpoint", type=Path, metavar="CHECKPOINT",
+                        help=f"the checkpoint ({CHECKPOINT_FILE} in the run's directory)")
+    resume.add_argument("--until", type=float, metavar="T",
+                        help="run to the simulated time T instead of the run's end (later "
+                             "or earlier; the measurement goes on in blocks of the same "
+                             "length)")
+    resume.add_argument("--output", "-o", type=Path, metavar="DIR",
+                        help="write into DIR (default: the checkpoint's directory)")
+    resume.add_argument("--no-progress", action="store_true", help="no progress bar")
+    resume.set_defaults(handler=_cmd_resume)
+
+    info = sub.add_parser(
+        "info", help="describe a GSD file or a checkpoint",
+        description="Describe a GSD trajectory (frames, disks, box, species, walls, "
+                    "times) or an edmd2d checkpoint (time, disks, box, species, walls, "
+                    "physics, counts and the run it belongs to).")
+    info.add_argument("file", type=Path, metavar="FILE", help="a .gsd file or a checkpoint")
+    info.set_defaults(handler=_cmd_info)
+    return parser
+
+
+def _config_example() -> str:
+    """The annotated configuration of :mod:`edmd2d.config`'s docstring."""
+    doc = _config.__doc__.split("::", 1)[1]
+    block = []
+    for line in doc.splitlines()[1:]:
+        if line.strip() and not line.startswith("    "):
+            break
+        block.append(line[2:])
+    return "\n".join(block).strip("\n") + "\n"
+
+
+# ------------------------------------------------------------------ run and resume
+def _cmd_run(args) -> int:
+    cfg = _config.load(args.config)
+    out = args.output if args.output is not None else (
+        args.config.parent / f"{args.config.stem}-run")
+    gsd_every = cfg.data["output"]["gsd_every"]
+    if gsd_every is not None:
+        _need_gsd("[output] gsd_every")
+    seed = cfg.data["model"]["seed"]
+    if seed is None:
+        seed = secrets.randbits(32)
+    sim, removed = _config.build(cfg, seed)
+    _make_dir(out)
+    (out / CONFIG_FILE).write_text(cfg.text, encoding="utf-8")
+    run = cfg.data["run"]
+    t0 = sim.time
+    meta = {
+        "format": _RUN_FORMAT, "version": _RUN_VERSION, "edmd2d": __version__,
+        "config": cfg.data, "config_file": str(args.config), "seed": seed,
+        "removed_disks": removed, "t_start": t0,
+        "window": {"start": t0 + run["equilibrate"], "duration": run["duration"],
+                   "blocks": run["blocks"]},
+        "end": t0 + run["equilibrate"] + run["duration"],
+        "measure": None, "rows": [], "wall_seconds": 0.0,
+    }
+    if removed:
+        _say(f"{removed} disks of the lattice start crossed wall segments and were left "
+             f"out: {len(sim)} disks")
+    until = meta["end"]
+    if args.until is not None:
+        if not t0 < args.until <= meta["end"]:
+            raise UserError(f"--until {args.until:g} must lie after the start (t={t0:g}) and "
+                            f"not after the run's end (t={meta['end']:g})")
+        until = args.until
+    return _Runner(sim, meta, out, progress=not args.no_progress,
+                   resumed=False).execute(until)
+
+
+def _cmd_resume(args) -> int:
+    path = args.checkpoint
+    meta = _read_checkpoint_metadata(path)
+    if meta.get("format") != _RUN_FORMAT:
+        raise UserError(f"{path} was not written by 'edmd2d run': it holds no run to "
+                        "continue (load it in Python with edmd2d.checkpoint.load)")
+    if meta.get("version") != _RUN_VERSION:
+        raise UserError(f"{path} holds a run of format version {meta.get('version')}; this "
+                        f"edmd2d {__version__} continues version {_RUN_VERSION}")
+    sim = _load_checkpoint(path)
+    if args.until is not None:
+        if not args.until > sim.time:
+            raise UserError(f"--until {args.until:g} must lie after the checkpoint's time "
+                            f"t={sim.time:g}")
+        meta["end"] = args.until
+    if sim.time >= meta["end"]:
+        _say(f"the run is complete at t={sim.time:g}; give --until T to go on")
+        return 0
+    out = args.output if args.output is not None else path.parent
+    _make_dir(out)
+    if out.resolve() != path.parent.resolve():
+        source = path.parent / CONFIG_FILE
+        if source.exists():
+            shutil.copyfile(source, out / CONFIG_FILE)
+    if meta["config"]["output"]["gsd_every"] is not None:
+        _need_gsd("resuming a run with a GSD trajectory")
+        _continue_gsd(path.parent / GSD_FILE, out / GSD_FILE, sim.time)
+    return _Runner(sim, meta, out, progress=not args.no_progress,
+                   resumed=True).execute(meta["end"])
+
+
+class _Runner:
+    """One run of ``edmd2d run`` or ``edmd2d resume``: the operations, the table and
+    the files."""
+
+    def __init__(self, sim, meta: dict, out: Path, *, progress: bool, resumed: bool):
+        self.sim, self.meta, self.out = sim, meta, out
+        self.progress, self.resumed = progress, resumed
+        self.bar = None
+        self.clock = _time.perf_counter()
+        self.wall0 = meta["wall_seconds"]
+        self.last_row = (self.clock, sim.counts.collisions)
+
+    def execute(self, until: float) -> int:
+        sim, meta, out = self.sim, self.meta, self.out
+        window = meta["window"]
+        count = _blocks_until(window, until)
+        if meta["measure"] is None:
+            self.measure = _op.Measure(_op.Blocks(window["duration"], window["blocks"],
+                                                  start=window["start"], count=count))
+        else:
+            self.measure = _op.Measure.from_state(meta["measure"], count=count)
+        rows = _op.Callback(self._row, _op.Blocks(window["duration"], window["blocks"],
+                                                  start=window["start"], count=count))
+        operations = [self.measure, rows]
+        settings = meta["config"]["output"]
+        if settings["gsd_every"] is not None:
+            gsd = _op.WriteGSD(out / GSD_FILE,
+                               _op.Every(dt=settings["gsd_every"], start=meta["t_start"]),
+                               mode="a" if self.resumed else "w")
+            if not self.resumed:
+                gsd(sim)  # (the first frame: the start)
+            operations.append(gsd)
+        path = out / CHECKPOINT_FILE
+        if settings["checkpoint_every"] is not None:
+            operations.append(_op.Checkpoint(
+                path, _op.Every(dt=settings["checkpoint_every"], start=meta["t_start"]),
+                metadata=self._metadata))
+        if settings["checkpoint_minutes"] is not None:
+            operations.append(_op.Checkpoint(
+                path, _op.Every(seconds=60.0 * settings["checkpoint_minutes"]),
+                metadata=self._metadata))
+        self._print_head(until)
+        status = "complete" if until >= meta["end"] else "stopped"
+        try:
+            if self.progress:
+                from . import progress as _progress
+
+                self.bar, _ = _progress.bar(True, total=until - sim.time, unit="time",
+                                            desc="edmd2d")
+            self.last_row = (_time.perf_counter(), sim.counts.collisions)
+            try:
+                sim.run(until=until, operations=operations, progress=self.bar or False)
+            finally:
+                if self.bar is not None:
+                    self.bar.close()
+                    self.bar = None
+        except KeyboardInterrupt:
+            status = "interrupted"
+        _checkpoint.save(sim, path, metadata=self._metadata(sim))
+        results = self._results(status)
+        _write_json(out / RESULTS_FILE, results)
+        self._print_tail(results, path)
+        return 130 if status == "interrupted" else 0
+
+    # -------------------------------------------------------------- the table
+    def _print(self, line: str) -> None:
+        if self.bar is not None:
+            try:
+                self.bar.write(line, file=sys.stdout)
+            except BrokenPipeError:
+                _say("")  # (drops the output from here on)
+        else:
+            _say(line)
+
+    def _print_head(self, until: float) -> None:
+        meta, sim = self.meta, self.sim
+        w = meta["window"]
+        end = w["start"] + w["duration"]
+        what = "resuming" if self.resumed else "running"
+        self._print(f"{what} {len(sim)} disks from t={sim.time:g} to t={until:g}; measuring "
+                    f"t={w['start']:g}..{end:g} in {w['blocks']} blocks (seed {meta['seed']})")
+        self._print("each row: the window so far, mean +- standard error over its blocks")
+        self._print(_ROW_HEAD)
+        for row in meta["rows"]:
+            self._print(_row_text(row) + ("   (before the checkpoint)" if self.resumed
+                                          else ""))
+
+    def _row(self, sim) -> None:
+        now = _time.perf_counter()
+        if self.measure.blocks == 0:  # (the window opens)
+            self.last_row = (now, sim.counts.collisions)
+            return
+        m = self.measure.result()
+        then, collisions = self.last_row
+        rate = (sim.counts.collisions - collisions) / max(now - then, 1e-9)
+        self.last_row = (now, sim.counts.collisions)
+        row = {"time": sim.time, "collisions_per_second": rate, "blocks": m.blocks,
+               "temperature": m.temperature, "temperature_error": m.temperature_error,
+               "compressibility_factor": m.compressibility_factor,
+               "compressibility_factor_error": m.compressibility_factor_error}
+        self.meta["rows"].append(row)
+        self._print(_row_text(row))
+
+    def _print_tail(self, results: dict, path: Path) -> None:
+        sim = self.sim
+        status = results["status"]
+        if self.measure.blocks:
+            _say(self.measure.result().summary())
+        if status == "complete":
+            _say(f"done at t={sim.time:g}: {sim.counts.collisions} collisions; results in "
+                 f"{self.out / RESULTS_FILE}")
+        else:
+            _say(f"{status} at t={sim.time:g}; continue with: edmd2d resume {path}",
+                 sys.stderr if status == "interrupted" else sys.stdout)
+
+    # -------------------------------------------------------------- the files
+    def _metadata(self, sim) -> dict:
+        meta = dict(self.meta)
+        meta["measure"] = self.measure.state()
+        meta["wall_seconds"] = self.wall0 + (_time.perf_counter() - self.clock)
+        return meta
+
+    def _results(self, status: str) -> dict:
+        sim, meta = self.sim, self.meta
+        measurement = self.measure.result() if self.measure.blocks else None
+        w = meta["window"]
+        files = {"config": CONFIG_FILE, "checkpoint": CHECKPOINT_FILE}
+        if meta["config"]["output"]["gsd_every"] is not None:
+            files["gsd"] = GSD_FILE
+        box = sim.box
+        return {
+            "edmd2d": __version__,
+            "status": status,
+            "config_file": meta["config_file"],
+            "seed": meta["seed"],
+            "time": sim.time,
+            "end": meta["end"],
+            "n": len(sim),
+            "removed_disks": meta["removed_disks"],
+            "box": {"width": box.width, "height": box.height,
+                    "periodic": list(box.periodic)},
+            "counts": dataclasses.asdict(sim.counts),
+            "kinetic_energy": sim.kinetic_energy(),
+            "window": {"start": w["start"], "duration": w["duration"],
+                       "blocks": w["blocks"],
+                       "blocks_measured": self.measure.blocks},
+            "measurement": None if measurement is None else _measurement_json(measurement),
+            "table": meta["rows"],
+            "wall_seconds": self.wall0 + (_time.perf_counter() - self.clock),
+            "files": files,
+            "config": meta["config"],
+        }
+
+
+_ROW_HEAD = (f"{'time':>12} {'coll/s':>10} {'T':>12} {'+- error':<11} "
+             f"{'Z':>10} {'+- error':<11}")
+
+
+def _row_text(row: dict) -> str:
+    def err(value):
+        return f"{value:<8.2g}" if value is not None and math.isfinite(value) else f"{'-':<8}"
+
+    return (f"{row['time']:>12.6g} {row['collisions_per_second']:>10.3g} "
+            f"{row['temperature']:>12.6f} +- {err(row['temperature_error'])} "
+            f"{row['compressibility_factor']:>10.5f} +- "
+            f"{err(row['compressibility_factor_error'])}")
+
+
+def _blocks_until(window: dict, until: float) -> int:
+    """How many blocks of the window end by ``until``: the window's own, or more of
+    the same length when the run goes on past it."""
+    trigger = _op.Blocks(window["duration"], window["blocks"], start=window["start"])
+    count = window["blocks"]
+    while trigger.edge(count + 1) <= until:
+        count += 1
+    return count
+
+
+def _measurement_json(m) -> dict:
+    """A Measurement as JSON: ``{"value", "error"}`` for the quantities with error bars,
+    lists for arrays, ``null`` for values that are not finite."""
+    out = {}
+    names = {f.name for f in dataclasses.fields(m)}
+    for f in dataclasses.fields(m):
+        name = f.name
+        if name.endswith("_error") and name[:-6] in names:
+            continue
+        value = _plain(getattr(m, name))
+        if name + "_error" in names:
+            value = {"value": value, "error": _plain(getattr(m, name + "_error"))}
+        out[name] = value
+    return out
+
+
+def _plain(value):
+    if isinstance(value, np.ndarray):
+        return [_plain(v) for v in value.tolist()]
+    if isinstance(value, (list, tuple)):
+        return [_plain(v) for v in value]
+    if isinstance(value, (np.generic,)):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _write_json(path: Path, data: dict) -> None:
+    """Write ``data`` as strict JSON (``null`` for values that are not finite), through
+    a temporary file renamed over ``path``: a reader never sees half a file."""
+    text = json.dumps(_plain_tree(data), indent=1, allow_nan=False)
+    tmp = path.with_name(f".{path.name}.tmp")
+    tmp.write_text(text + "\n", encoding="utf-8")
+    os.replace(tmp, path)
+
+
+def _plain_tree(value):
+    if isinstance(value, dict):
+        return {k: _plain_tree(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [_plain_tree(v) for v in (value.tolist() if isinstance(value, np.ndarray)
+                                         else value)]
+    return _plain(value)
+
+
+def _make_dir(path: Path) -> None:
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise UserError(f"cannot make the output directory {path}: {exc.strerror}") from None
+
+
+def _need_gsd(what: str) -> None:
+    try:
+        import gsd.hoomd  # noqa: F401
+    except ImportError:
+        raise UserError(f"{what} needs the gsd package: pip install 'edmd2d[io]'") from None
+
+
+def _continue_gsd(source: Path, target: Path, time: float) -> None:
+    """Make ``target`` hold the frames of ``source`` up to ``time`` (those a resumed
+    run continues from; later ones were written after the checkpoint)."""
+    import gsd.hoomd
+
+    if not source.exists():
+        return
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    os.close(fd)
+    try:
+        with gsd.hoomd.open(str(source), "r") as old, gsd.hoomd.open(tmp, "w") as new:
+            for frame in old:
+                if float(frame.log["edmd2d/time"][0]) <= time:
+                    new.append(frame)
+        os.replace(tmp, target)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def _read_checkpoint_metadata(path: Path) -> dict:
+    try:
+        return _checkpoint.read_metadata(path)
+    except FileNotFoundError:
+        raise UserError(f"{path}: no such file") from None
+    except (OSError, ValueError) as exc:
+        raise UserError(str(exc)) from None
+
+
+def _load_checkpoint(path: Path):
+    try:
+        return _checkpoint.load(path)
+    except FileNotFoundError:
+        raise UserError(f"{path}: no such file") from None
+    except (OSError, ValueError) as exc:
+        raise UserError(str(exc)) from None
+
+
+# ------------------------------------------------------------------ info
+def _cmd_info(args) -> int:
+    path = args.file
+    if not path.exists():
+        raise UserError(f"{path}: no such file")
+    if path.is_dir():
+        raise UserError(f"{path} is a directory; give a .gsd file or a checkpoint")
+    if zipfile.is_zipfile(path):
+        _say(_checkpoint_info(path))
+    else:
+        _say(_gsd_info(path))
+    return 0
+
+
+def _describe(lines: list) -> str:
+    width = max(len(k) for k, _ in lines)
+    return "\n".join(f"  {k:<{width}}  {v}" for k, v in lines)
+
+
+def _species_text(species: np.ndarray, radii: np.ndarray, masses: np.ndarray) -> str:
+    parts = []
+    for s in np.unique(species):
+        sel = species == s
+        r, m = np.unique(radii[sel]), np.unique(masses[sel])
+        parts.append(f"{int(s)}: {int(sel.sum())} (radius {_values(r)}, mass {_values(m)})")
+    return "; ".join(parts)
+
+
+def _segments(k: int) -> str:
+    return f"{k} segment" + ("" if k == 1 else "s")
+
+
+def _values(v: np.ndarray) -> str:
+    return f"{v[0]:g}" if len(v) == 1 else f"{v.min():g}-{v.max():g}"
+
+
+def _box_text(width: float, height: float, periodic) -> str:
+    kind = {(True, True): "periodic", (False, False): "walled",
+            (True, False): "periodic in x, walled in y",
+            (False, True): "walled in x, periodic in y"}[tuple(bool(p) for p in periodic)]
+    return f"{width:.6g} x {height:.6g}, {kind}"
+
+
+def _checkpoint_info(path: Path) -> str:
+    meta = _read_checkpoint_metadata(path)
+    sim = _load_checkpoint(path)
+    c = sim.counts
+    physics = []
+    table = sim.restitution
+    if (table != 1.0).any():
+        physics.append("restitution " + (f"{table[0, 0]:g}" if table.size == 1
+                                         else str(table.tolist())) + f", tc {sim.tc:g}")
+    if sim.wall_restitution != 1.0:
+        physics.append(f"wall restitution {sim.wall_restitution:g}")
+    if sim.gravity.any():
+        physics.append(f"gravity ({sim.gravity[0]:g}, {sim.gravity[1]:g})")
+    if sim.thermostat is not None:
+        physics.append(f"thermostat kT={sim.thermostat[0]:g}, rate={sim.thermostat[1]:g}")
+    if sim.wall_temperatures:
+        physics.append(f"heated walls {sim.wall_temperatures}")
+    lines = [
+        ("time", f"{sim.time:.10g}"),
+        ("disks", f"{len(sim)}"),
+        ("species", _species_text(sim.species, sim.radii, sim.masses)),
+        ("box", _box_text(sim.box.width, sim.box.height, sim.box.periodic)),
+        ("walls", _segments(len(sim.walls))),
+        ("physics", ", ".join(physics) or "elastic"),
+        ("counts", f"{c.collisions} collisions, {c.wall_collisions} wall collisions, "
+                   f"{c.events} events"),
+        ("energy", f"kinetic {sim.kinetic_energy():.10g}"),
+    ]
+    if meta.get("format") == _RUN_FORMAT:
+        w = meta["window"]
+        done = 0 if meta.get("measure") is None else max(len(meta["measure"]["edges"]) - 1, 0)
+        lines += [
+            ("run", f"of {meta['config_file']}, seed {meta['seed']}, to t={meta['end']:g}"),
+            ("measured", f"{done} of {w['blocks']} blocks of t={w['start']:g}.."
+                         f"{w['start'] + w['duration']:g}"),
+        ]
+    return f"{path}: edmd2d checkpoint\n" + _describe(lines)
+
+
+def _gsd_info(path: Path) -> str:
+    _need_gsd("reading a GSD file")
+    import gsd.hoomd
+
+    try:
+        traj = gsd.hoomd.open(str(path), "r")
+    except Exception as exc:  # (gsd raises several kinds for a file that is not GSD)
+        raise UserError(f"{path} is neither a GSD file nor an edmd2d checkpoint ({exc})"
+                        ) from None
+    with traj:
+        frames = len(traj)
+        if frames == 0:
+            return f"{path}: GSD file, no frames"
+        first, last = traj[0], traj[frames - 1]
+    lines = [("frames", f"{frames}")]
+    log = {k: np.asarray(v) for k, v in last.log.items()}
+    t_first = first.log.get("edmd2d/time")
+    if t_first is not None and "edmd2d/time" in log:
+        lines.append(("time", f"{float(np.asarray(t_first)[0]):.10g} .. "
+                              f"{float(log['edmd2d/time'][0]):.10g}"))
+    p = last.particles
+    lines.append(("disks", f"{p.N}"))
+    lx, ly = (float(v) for v in last.configuration.box[:2])
+    periodic = tuple(bool(v) for v in log.get("edmd2d/periodic", np.array([1, 1])))
+    lines.append(("box", _box_text(lx, ly, periodic)))
+    typeid = (np.zeros(p.N, int) if p.typeid is None else np.asarray(p.typeid))
+    diameter = np.ones(p.N) if p.diameter is None else np.asarray(p.diameter, float)
+    mass = np.ones(p.N) if p.mass is None else np.asarray(p.mass, float)
+    types = list(p.types) if p.types is not None else ["A"]
+    parts = [f"{types[t] if t < len(types) else t}: {int((typeid == t).sum())} (diameter "
+             f"{_values(np.unique(diameter[typeid == t]))}, mass "
+             f"{_values(np.unique(mass[typeid == t]))})" for t in np.unique(typeid)]
+    lines.append(("species", "; ".join(parts)))
+    walls = log.get("edmd2d/walls")
+    lines.append(("walls", _segments(0 if walls is None else len(walls.reshape(-1, 4)))))
+    if "edmd2d/collisions" in log:
+        lines.append(("collisions", f"{int(log['edmd2d/collisions'][0])} at the last frame"))
+    return f"{path}: GSD file (HOOMD schema)\n" + _describe(lines)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,671 @@
+"""Run configurations in TOML: reading, checking and building the simulation they describe.
+
+A configuration (see ``examples/gas.toml``) has these tables; only ``[gas]`` with ``n``
+and ``packing_fraction``, and ``[run]`` with ``duration``, are required::
+
+    [gas]                      # a gas from a lattice start (edmd2d.make_gas)
+    n = 400                    # number of disks
+    packing_fraction = 0.4     # area fraction of the box
+    temperature = 1.0          # kT of the Maxwell-Boltzmann start
+    radius = 0.5               # equal disks ...
+    mass = 1.0
+    aspect = 1.0               # box width / height
+    periodic = true            # or false (walled box), or [true, false] (a channel)
+
+    [[gas.species]]            # ... or a mixture: one table per species, instead of
+    radius = 0.5               # gas.radius and gas.mass
+    mass = 1.0
+    fraction = 0.5             # or count = 200 (all species alike)
+
+    [model]                    # the physics (edmd2d.Simulation), all optional
+    restitution = 0.9          # or a table per pair of species: [[1.0, 0.9], [0.9, 0.8]]
+    wall_restitution = 1.0
+    tc = 1e-5
+    gravity = [0.0, -0.1]
+    thermostat = [1.0, 0.1]    # [kT, rate per disk]
+    seed = 1                   # random numbers of the start, thermostat and heated walls
+
+    [model.wall_temperatures]  # heated walls: box walls by name, segments by index
+    bottom = 2.0
+
+    [[walls]]                  # wall segments, optional: start and end ...
+    start = [10.0, 0.0]
+    end = [10.0, 8.0]
+    [[walls]]                  # ... or a closed polygon
+    polygon = [[2.0, 2.0], [6.0, 2.0], [4.0, 5.0]]
+
+    [run]
+    equilibrate = 20.0         # simulated time run before measuring
+    duration = 50.0            # the measurement window
+    blocks = 10                # its blocks: one row of the table each, and the error bars
+
+    [output]                   # optional
+    gsd_every = 5.0            # a GSD frame every this much simulated time
+    checkpoint_every = 25.0    # a checkpoint every this much simulated time ...
+    checkpoint_minutes = 10.0  # ... and/or every this many minutes of wall-clock time
+
+Every key is checked: a misspelt or unknown key, a value of the wrong type or out of
+range is a :class:`ConfigError` that names the key and the line of the file where it
+stands.  (TOML parsers give no line numbers for keys, so they are found by scanning the
+text for each key within its table.)  Disks of the lattice start that a wall segment
+crosses are left out (their number is reported).
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+__all__ = ["ConfigError", "RunConfig", "load", "loads", "build"]
+
+
+class ConfigError(ValueError):
+    """A configuration that cannot be used: what is wrong, with the key and its line.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong.
+    key : str, optional
+        The dotted key (``"gas.packing_fraction"``, ``"walls[1].start"``).
+    line : int, optional
+        Its line in the file (1-based).
+    path : str, optional
+        The file.
+    """
+
+    def __init__(self, message: str, key: str | None = None, line: int | None = None,
+                 path: str | None = None) -> None:
+        self.message, self.key, self.line, self.path = message, key, line, path
+        where = path or "<config>"
+        if line is not None:
+            where += f", line {line}"
+        super().__init__(f"{where}: {key + ': ' if key else ''}{message}")
+
+
+@dataclass
+class RunConfig:
+    """A checked configuration.
+
+    Attributes
+    ----------
+    data : dict
+        The configuration with every default filled in (plain TOML values).
+    text : str
+        The file's text.
+    path : str
+        Where it was read from (``"<config>"`` for a string).
+    lines : dict
+        The line of each key and table of the text (see :meth:`error`).
+    """
+
+    data: dict
+    text: str
+    path: str = "<config>"
+    lines: dict = field(default_factory=dict, repr=False)
+
+    def error(self, key: tuple, message: str) -> ConfigError:
+        """A :class:`ConfigError` for ``key`` (a path of names and indices) with its line.
+
+        Parameters
+        ----------
+        key : tuple
+        message : str
+
+        Returns
+        -------
+        ConfigError
+        """
+        return ConfigError(message, _dotted(key), _line_of(self.lines, key), self.path)
+
+
+# ------------------------------------------------------------------ the schema
+# Each key: (checker, default).  REQUIRED marks keys without a default; OPTIONAL keys
+# stay None when absent.
+REQUIRED = object()
+OPTIONAL = None
+
+
+def _number(lo=None, hi=None, *, lo_open=False, hi_open=False):
+    def check(value):
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            return None, f"expected a number, got {_shown(value)}"
+        value = float(value)
+        if not math.isfinite(value):
+            return None, f"expected a finite number, got {value}"
+        if lo is not None and (value < lo or (lo_open and value == lo)):
+            return None, f"must be {'>' if lo_open else '>='} {lo:g}, got {value:g}"
+        if hi is not None and (value > hi or (hi_open and value == hi)):
+            return None, f"must be {'<' if hi_open else '<='} {hi:g}, got {value:g}"
+        return value, None
+    return check
+
+
+def _integer(lo=None):
+    def check(value):
+        if isinstance(value, bool) or not isinstance(value, int):
+            return None, f"expected an integer, got {_shown(value)}"
+        if lo is not None and value < lo:
+            return None, f"must be >= {lo}, got {value}"
+        return value, None
+    return check
+
+
+def _vector(length=2):
+    def check(value):
+        if (not isinstance(value, list) or len(value) != length
+                or any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in value)):
+            return None, f"expected a list of {length} numbers, got {_shown(value)}"
+        if not all(math.isfinite(v) for v in value):
+            return None, f"expected finite numbers, got {value}"
+        return [float(v) for v in value], None
+    return check
+
+
+def _periodic(value):
+    if isinstance(value, bool):
+        return value, None
+    if isinstance(value, list) and len(value) == 2 and all(isinstance(v, bool) for v in value):
+        return list(value), None
+    return None, f"expected true, false or [true/false, true/false], got {_shown(value)}"
+
+
+def _restitution(value):
+    if isinstance(value, list):
+        if not value or not all(isinstance(row, list) and len(row) == len(value)
+                                for row in value):
+            return None, "expected a number or a square table (a list of equal rows)"
+        out = []
+        for row in value:
+            for v in row:
+                if isinstance(v, bool) or not isinstance(v, (int, float)):
+                    return None, f"table entries must be numbers, got {_shown(v)}"
+            out.append([float(v) for v in row])
+        return out, None
+    return _number(0.0, 1.0, lo_open=True)(value)
+
+
+def _polygon(value):
+    if not isinstance(value, list) or len(value) < 3:
+        return None, f"expected a list of at least 3 points [x, y], got {_shown(value)}"
+    points = []
+    for point in value:
+        checked, problem = _vector()(point)
+        if problem:
+            return None, f"each vertex: {problem}"
+        points.append(checked)
+    return points, None
+
+
+_GAS = {
+    "n": (_integer(1), REQUIRED),
+    "packing_fraction": (_number(0.0, 1.0, lo_open=True, hi_open=True), REQUIRED),
+    "temperature": (_number(0.0), 1.0),
+    "radius": (_number(0.0, lo_open=True), OPTIONAL),
+    "mass": (_number(0.0, lo_open=True), OPTIONAL),
+    "aspect": (_number(0.0, lo_open=True), 1.0),
+    "periodic": (_periodic, True),
+}
+_SPECIES = {
+    "radius": (_number(0.0, lo_open=True), REQUIRED),
+    "mass": (_number(0.0, lo_open=True), 1.0),
+    "count": (_integer(0), OPTIONAL),
+    "fraction": (_number(0.0, 1.0), OPTIONAL),
+}
+_MODEL = {
+    "restitution": (_restitution, 1.0),
+    "wall_restitution": (_number(0.0, 1.0, lo_open=True), 1.0),
+    "tc": (_number(0.0), OPTIONAL),
+    "gravity": (_vector(), OPTIONAL),
+    "thermostat": (_vector(), OPTIONAL),
+    "seed": (_integer(0), OPTIONAL),
+}
+_WALL = {
+    "start": (_vector(), OPTIONAL),
+    "end": (_vector(), OPTIONAL),
+    "polygon": (_polygon, OPTIONAL),
+}
+_RUN = {
+    "equilibrate": (_number(0.0), 0.0),
+    "duration": (_number(0.0, lo_open=True), REQUIRED),
+    "blocks": (_integer(1), 10),
+}
+_OUTPUT = {
+    "gsd_every": (_number(0.0, lo_open=True), OPTIONAL),
+    "checkpoint_every": (_number(0.0, lo_open=True), OPTIONAL),
+    "checkpoint_minutes": (_number(0.0, lo_open=True), OPTIONAL),
+}
+_TABLES = {"gas": _GAS, "model": _MODEL, "walls": _WALL, "run": _RUN, "output": _OUTPUT}
+_BOX_WALLS = ("left", "right", "bottom", "top")
+
+
+def load(path) -> RunConfig:
+    """Read and check the configuration file ``path``.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    RunConfig
+
+    Raises
+    ------
+    ConfigError
+        For a file that cannot be read, is not valid TOML, or whose keys or values are
+        wrong (naming the key and its line).
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ConfigError("no such file", path=str(path)) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"cannot be read ({exc})", path=str(path)) from None
+    return loads(text, str(path))
+
+
+def loads(text: str, path: str = "<config>") -> RunConfig:
+    """Check the configuration in the TOML string ``text``.
+
+    Parameters
+    ----------
+    text : str
+    path : str, default "<config>"
+        The name to use in messages.
+
+    Returns
+    -------
+    RunConfig
+
+    Raises
+    ------
+    ConfigError
+        As for :func:`load`.
+
+    Examples
+    --------
+    >>> cfg = loads("[gas]\\nn = 100\\npacking_fraction = 0.3\\n[run]\\nduration = 5\\n")
+    >>> cfg.data["run"]["blocks"], cfg.data["gas"]["temperature"]
+    (10, 1.0)
+    >>> try:
+    ...     loads("[gas]\\nn = 100\\npacking_fractoin = 0.3\\n[run]\\nduration = 5\\n")
+    ... except ConfigError as exc:
+    ...     print(exc)
+    <config>, line 3: gas.packing_fractoin: unknown key (did you mean 'packing_fraction'?)
+    """
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        found = re.search(r"line (\d+)", str(exc))
+        raise ConfigError(f"not valid TOML: {exc}", line=int(found.group(1)) if found else None,
+                          path=path) from None
+    cfg = RunConfig({}, text, path, _key_lines(text))
+    data = cfg.data
+    for name in raw:
+        if name not in _TABLES:
+            raise cfg.error((name,), _unknown(name, _TABLES, "table"))
+    if "gas" not in raw:
+        raise cfg.error(("gas",), "the table [gas] is required (n, packing_fraction)")
+    if "run" not in raw:
+        raise cfg.error(("run",), "the table [run] is required (duration)")
+    for name, schema in _TABLES.items():
+        if name == "walls":
+            continue
+        value = raw.get(name, {})
+        if not isinstance(value, dict):
+            raise cfg.error((name,), f"expected a table [{name}], got {_shown(value)}")
+        data[name] = _check_table(cfg, (name,), value, schema,
+                                  skip=("species",) if name == "gas" else
+                                  ("wall_temperatures",) if name == "model" else ())
+    _check_species(cfg, raw["gas"])
+    _check_wall_temperatures(cfg, raw.get("model", {}))
+    _check_walls(cfg, raw.get("walls", []))
+    return cfg
+
+
+def _check_table(cfg, where: tuple, value: dict, schema: dict, skip=()) -> dict:
+    out = {}
+    for key in value:
+        if key not in schema and key not in skip:
+            raise cfg.error(where + (key,), _unknown(key, list(schema) + list(skip)))
+    for key, (check, default) in schema.items():
+        if key not in value:
+            if default is REQUIRED:
+                raise cfg.error(where + (key,), "is required")
+            out[key] = default
+            continue
+        checked, problem = check(value[key])
+        if problem:
+            raise cfg.error(where + (key,), problem)
+        out[key] = checked
+    return out
+
+
+def _check_species(cfg, gas: dict) -> None:
+    data = cfg.data["gas"]
+    species = gas.get("species")
+    data["species"] = None
+    if species is None:
+        data["radius"] = 0.5 if data["radius"] is None else data["radius"]
+        data["mass"] = 1.0 if data["mass"] is None else data["mass"]
+        return
+    if not isinstance(species, list) or not species or not all(isinstance(s, dict)
+                                                               for s in species):
+        raise cfg.error(("gas", "species"), "expected tables [[gas.species]] (one a species)")
+    for key in ("radius", "mass"):
+        if data[key] is not None:
+            raise cfg.error(("gas", key), "give the radius and mass of each [[gas.species]] "
+                                          "instead of gas." + key)
+    rows = [_check_table(cfg, ("gas", "species", k), s, _SPECIES)
+            for k, s in enumerate(species)]
+    kinds = {("count" if r["count"] is not None else "")
+             + ("fraction" if r["fraction"] is not None else "") for r in rows}
+    if len(kinds) != 1 or kinds not in ({"count"}, {"fraction"}):
+        k = next((k for k, r in enumerate(rows)
+                  if (r["count"] is None) == (r["fraction"] is None)), 0)
+        raise cfg.error(("gas", "species", k), "give every species either a count or a "
+                                                 "fraction (one of them, the same for all)")
+    n = data["n"]
+    if kinds == {"count"}:
+        total = sum(r["count"] for r in rows)
+        if total != n:
+            raise cfg.error(("gas", "n"), f"is {n}, but the species' counts add up to {total}")
+    else:
+        fractions = np.array([r["fraction"] for r in rows])
+        if abs(fractions.sum() - 1.0) > 1e-9:
+            raise cfg.error(("gas", "species", len(rows) - 1, "fraction"),
+                            f"the species' fractions add up to {fractions.sum():g}, not 1")
+        # Largest remainders: counts that add up to n, each within one of n * fraction.
+        exact = fractions * n
+        counts = np.floor(exact).astype(int)
+        order = np.argsort(-(exact - counts), kind="stable")
+        counts[order[:n - counts.sum()]] += 1
+        for r, c in zip(rows, counts):
+            r["count"] = int(c)
+    data["species"] = rows
+
+
+def _check_wall_temperatures(cfg, model: dict) -> None:
+    value = model.get("wall_temperatures")
+    where = ("model", "wall_temperatures")
+    out = None
+    if value is not None:
+        if not isinstance(value, dict):
+            raise cfg.error(where, "expected a table {wall = kT} (box walls by name, "
+                                   "segments by index)")
+        out = {}
+        for key, kt in value.items():
+            if key not in _BOX_WALLS and not key.isdigit():
+                raise cfg.error(where + (key,), _unknown(key, _BOX_WALLS, "wall")
+                                + " (or a segment's index)")
+            checked, problem = _number(0.0, lo_open=True)(kt)
+            if problem:
+                raise cfg.error(where + (key,), problem)
+            out[key] = checked
+    cfg.data["model"]["wall_temperatures"] = out
+
+
+def _check_walls(cfg, walls) -> None:
+    if not isinstance(walls, list) or not all(isinstance(w, dict) for w in walls):
+        raise cfg.error(("walls",), "expected tables [[walls]] (start and end, or polygon)")
+    rows = []
+    for k, w in enumerate(walls):
+        row = _check_table(cfg, ("walls", k), w, _WALL)
+        segment = row["start"] is not None or row["end"] is not None
+        if segment == (row["polygon"] is not None) or (segment and None in (row["start"],
+                                                                            row["end"])):
+            raise cfg.error(("walls", k), "give either start and end, or polygon")
+        rows.append(row)
+    cfg.data["walls"] = rows
+
+
+# ------------------------------------------------------------------ building
+# Keyword of make_gas or Simulation -> the key of the configuration it comes from.
+_ARGUMENT_KEYS = {
+    "n": ("gas", "n"), "packing_fraction": ("gas", "packing_fraction"),
+    "temperature": ("gas", "temperature"), "radius": ("gas", "radius"),
+    "radii": ("gas", "species"), "masses": ("gas", "mass"), "aspect": ("gas", "aspect"),
+    "periodic": ("gas", "periodic"), "species": ("gas", "species"),
+    "restitution": ("model", "restitution"),
+    "wall_restitution": ("model", "wall_restitution"), "tc": ("model", "tc"),
+    "gravity": ("model", "gravity"), "thermostat": ("model", "thermostat"),
+    "wall_temperatures": ("model", "wall_temperatures"), "walls": ("walls",),
+    "positions": ("walls",), "velocities": ("walls",),
+}
+
+
+def build(cfg: RunConfig, seed: int):
+    """The simulation a configuration describes, at time 0.
+
+    Without wall segments or a mixture of masses this is
+    ``edmd2d.make_gas(n, packing_fraction, ..., seed=seed)`` with the ``[model]``
+    keywords.  A mixture's species are laid on the lattice at random (species of
+    equal radius told apart by a further random draw) and, if their masses differ,
+    their velocities are drawn for their masses; disks that a wall segment crosses are
+    left out.
+
+    Parameters
+    ----------
+    cfg : RunConfig
+    seed : int
+        The seed of all random numbers (``[model] seed``, or one drawn by the caller).
+
+    Returns
+    -------
+    sim : Simulation
+    removed : int
+        Disks left out because a wall segment crossed them.
+
+    Raises
+    ------
+    ConfigError
+        If the library refuses a value (the message is the library's, with the key
+        and line it comes from).
+    """
+    from . import builders
+    from .builders import make_gas
+    from .geometry import Wall
+    from .simulation import Simulation
+
+    gas, model = cfg.data["gas"], cfg.data["model"]
+    rng = np.random.default_rng(seed)
+    species = gas["species"]
+    try:
+        if species is None:
+            radii, masses, radius = None, gas["mass"], gas["radius"]
+        else:
+            radii = np.repeat([s["radius"] for s in species], [s["count"] for s in species])
+            species_masses = np.array([s["mass"] for s in species])
+            masses = float(species_masses[0]) if (species_masses == species_masses[0]).all() \
+                else 1.0
+            radius = 0.5
+        start = make_gas(gas["n"], gas["packing_fraction"], radius=radius, radii=radii,
+                         masses=masses, aspect=gas["aspect"], periodic=_box_kind(gas),
+                         temperature=gas["temperature"], seed=rng)
+        pos, vel, rad, mass = (start.positions, start.velocities, start.radii,
+                               start.masses.copy())
+        labels = None
+        if species is not None:
+            labels = _species_labels(rad, species, rng)
+            mass = species_masses[labels]
+            if not (species_masses == species_masses[0]).all():
+                vel = builders._maxwell_boltzmann(rng, mass, gas["temperature"],
+                                                  sum(start.box.periodic))
+        walls = []
+        for w in cfg.data["walls"]:
+            if w["polygon"] is not None:
+                walls.extend(Wall.polygon(w["polygon"]))
+            else:
+                walls.append(Wall(tuple(w["start"]), tuple(w["end"])))
+        keep = np.ones(len(pos), bool)
+        for w in walls:
+            keep &= _segment_distance(pos, w) > rad * (1.0 + 1e-9)
+        if not keep.any():
+            raise cfg.error(("walls",), "the wall segments cross every disk of the gas")
+        wall_kt = model["wall_temperatures"]
+        if wall_kt is not None:
+            wall_kt = {(int(k) if k.isdigit() else k): v for k, v in wall_kt.items()}
+        sim = Simulation(
+            pos[keep], vel[keep], rad[keep], mass[keep], box=start.box, walls=walls,
+            species=None if labels is None else labels[keep],
+            restitution=(model["restitution"] if not isinstance(model["restitution"], list)
+                         else np.array(model["restitution"])),
+            wall_restitution=model["wall_restitution"], tc=model["tc"],
+            gravity=model["gravity"], wall_temperatures=wall_kt,
+            thermostat=model["thermostat"], seed=rng)
+    except (TypeError, ValueError) as exc:
+        if isinstance(exc, ConfigError):
+            raise
+        raise cfg.error(_key_of_message(str(exc)), str(exc)) from None
+    return sim, int((~keep).sum())
+
+
+def _box_kind(gas: dict):
+    periodic = gas["periodic"]
+    return tuple(periodic) if isinstance(periodic, list) else periodic
+
+
+def _species_labels(radii: np.ndarray, species: list, rng) -> np.ndarray:
+    """Each disk's species, from its radius (``make_gas`` shuffles the radii over the
+    lattice); among species of equal radius, a random permutation decides."""
+    labels = np.empty(len(radii), np.int64)
+    species_radii = np.array([s["radius"] for s in species])
+    for r in np.unique(species_radii):
+        ids = np.flatnonzero(species_radii == r)
+        members = np.repeat(ids, [species[k]["count"] for k in ids])
+        where = np.flatnonzero(radii == r)
+        labels[where] = members if len(ids) == 1 else rng.permutation(members)
+    return labels
+
+
+def _segment_distance(points: np.ndarray, wall) -> np.ndarray:
+    a, b = np.array(wall.start), np.array(wall.end)
+    u = b - a
+    s = np.clip((points - a) @ u / (u @ u), 0.0, 1.0)
+    d = points - a - s[:, None] * u
+    return np.hypot(d[:, 0], d[:, 1])
+
+
+def _key_of_message(message: str) -> tuple:
+    """The configuration key behind a library error: the keyword it names first."""
+    best, where = (), len(message) + 1
+    for name, key in _ARGUMENT_KEYS.items():
+        found = re.search(rf"(?<![\w.]){re.escape(name)}(?!\w)", message)
+        if found and found.start() < where:
+            best, where = key, found.start()
+    return best
+
+
+# ------------------------------------------------------------------ messages and lines
+def _unknown(key: str, known, what: str = "key") -> str:
+    close = difflib.get_close_matches(key, list(known), n=1)
+    hint = f" (did you mean {close[0]!r}?)" if close else (
+        f" (known: {', '.join(map(str, known))})")
+    return f"unknown {what}{hint}"
+
+
+def _shown(value) -> str:
+    kind = {str: "a string", bool: "a boolean", int: "an integer", float: "a number",
+            list: "a list", dict: "a table"}.get(type(value), type(value).__name__)
+    return f"{kind} {value!r}" if not isinstance(value, dict) else kind
+
+
+def _dotted(key: tuple) -> str:
+    out = ""
+    for part in key:
+        out += f"[{part}]" if isinstance(part, int) else (f".{part}" if out else part)
+    return out
+
+
+def _line_of(lines: dict, key: tuple) -> int | None:
+    """The line of ``key``, or of the nearest enclosing table or key that has one."""
+    key = tuple(key)
+    while key:
+        if key in lines:
+            return lines[key]
+        key = key[:-1]
+    return None
+
+
+_HEADER = re.compile(r"^\s*(\[\[?)\s*([^\]]+?)\s*\]\]?\s*$")
+_NAME = r"""(?:[A-Za-z0-9_-]+|"[^"]*"|'[^']*')"""  # (a bare or quoted key)
+_KEY = re.compile(rf"^\s*({_NAME}(?:\s*\.\s*{_NAME})*)\s*=(.*)$")
+
+
+def _split_key(key: str) -> tuple:
+    parts = re.findall(_NAME, key)
+    return tuple(p[1:-1] if p[:1] in "\"'" else p for p in parts)
+
+
+def _strip_comment(line: str) -> str:
+    quote = None
+    for i, ch in enumerate(line):
+        if quote:
+            if ch == quote:
+                quote = None
+        elif ch in "\"'":
+            quote = ch
+        elif ch == "#":
+            return line[:i]
+    return line
+
+
+def _key_lines(text: str) -> dict:
+    """Where each key and table of a TOML text is: ``{path: line}``, a path being the
+    tuple of names (and indices of arrays of tables, ``("walls", 1, "start")``).
+
+    A scan of the text, table header by table header: keys (also dotted and quoted)
+    at the start of a line; the keys of an inline table ``{a = 1, b = 2}`` on the line
+    of its key; the lines inside a value that spans several lines are skipped.
+    """
+    lines: dict = {}
+    arrays: dict = {}
+    table: tuple = ()
+    depth = 0
+    for number, raw in enumerate(text.splitlines(), start=1):
+        line = _strip_comment(raw)
+        if depth > 0:  # (inside a value of several lines: an array)
+            depth += line.count("[") + line.count("{") - line.count("]") - line.count("}")
+            continue
+        header = _HEADER.match(line)
+        if header:
+            path = _split_key(header.group(2))
+            if header.group(1) == "[[":
+                k = arrays.get(path, 0)
+                arrays[path] = k + 1
+                lines.setdefault(path, number)
+                path = path + (k,)
+            else:
+                # (a sub-table of the last element of an array of tables)
+                for n in range(len(path) - 1, 0, -1):
+                    if path[:n] in arrays:
+                        path = path[:n] + (arrays[path[:n]] - 1,) + path[n:]
+                        break
+            table = path
+            lines.setdefault(path, number)
+            continue
+        found = _KEY.match(line)
+        if not found:
+            continue
+        path = table + _split_key(found.group(1))
+        lines.setdefault(path, number)
+        value = found.group(2)
+        depth = value.count("[") + value.count("{") - value.count("]") - value.count("}")
+        inline = value.strip()
+        if inline.startswith("{"):
+            for inner in re.finditer(r"([A-Za-z0-9_-]+)\s*=", inline):
+                lines.setdefault(path + (inner.group(1),), number)
+    return lines

@@ -324,3 +324,33 @@ def test_rdf_default_range_runs_in_memory_linear_in_n():
     assert 6.0 < r_last < 6.33
     assert deviation < 0.05  # (uniform points: g = 1)
     assert bytes_per_disk < 1000
+
+
+@pytest.mark.parametrize("periodic", [True, False, (True, False)])
+def test_voronoi_cells_tile_the_box(periodic):
+    """Cells wrap on periodic axes and end at walls (mirror images): they tile the box,
+    and a lattice gas has local packing fractions around its packing fraction."""
+    sim = ed.make_gas(300, 0.5, periodic=periodic, seed=1)
+    areas = ed.voronoi_cell_areas(sim)
+    assert areas.sum() == pytest.approx(sim.box.area, rel=1e-12)
+    assert np.all(areas > 0)
+    assert ed.local_packing_fractions(sim).mean() == pytest.approx(0.5, abs=0.01)
+
+
+def test_voronoi_cells_of_lattices():
+    """Unit squares of a square lattice in a walled box; the triangular lattice at
+    contact packs every disk at pi / (2 sqrt 3)."""
+    i, j = np.meshgrid(np.arange(5), np.arange(4))
+    pts = np.column_stack([i.ravel() + 0.5, j.ravel() + 0.5])
+    np.testing.assert_allclose(ed.voronoi_cell_areas(pts, ed.Box(5.0, 4.0, periodic=False)),
+                               1.0, rtol=1e-12)
+    i, j = np.meshgrid(np.arange(6), np.arange(6))
+    s = 1.0 + 1e-12
+    tri = np.column_stack([((i + 0.5 * (j % 2)) * s).ravel(), (j * s * np.sqrt(3) / 2).ravel()])
+    sim = ed.Simulation(tri, np.zeros_like(tri), 0.5, box=ed.Box(6 * s, 6 * s * np.sqrt(3) / 2))
+    np.testing.assert_allclose(ed.local_packing_fractions(sim), np.pi / (2 * np.sqrt(3)),
+                               rtol=1e-10)
+    with pytest.raises(ValueError, match="share a centre"):
+        ed.voronoi_cell_areas([[1.0, 1.0], [1.0, 1.0], [2.0, 2.0]], ed.Box(4.0, 4.0))
+    with pytest.raises(TypeError, match="Simulation"):
+        ed.local_packing_fractions(pts)

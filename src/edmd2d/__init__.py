@@ -10,13 +10,17 @@
 from . import checkpoint, models, operations, theory
 from .analysis import (
     hexatic_order,
+    local_packing_fractions,
     maxwell_boltzmann_test,
     mean_squared_displacement,
     radial_distribution,
     speed_distribution,
     trajectory,
+    voronoi_cell_areas,
 )
-from .builders import lattice_packing_limit, make_gas
+from .builders import lattice_packing_limit, make_gas, random_gas, random_packing
+from .compress import Compression, compress, packing_fraction
+from .contacts import ContactNetwork, contact_network, contact_tolerance
 from .geometry import Box, Wall
 from .measurements import Cooling, Measurement, cooling, kinetic_temperature, measure
 from .simulation import Counts, Simulation
@@ -27,6 +31,9 @@ __all__ = [
     "radial_distribution", "speed_distribution", "maxwell_boltzmann_test",
     "trajectory", "mean_squared_displacement", "hexatic_order",
     "theory", "checkpoint", "operations",
+    "random_packing", "contact_network", "contact_tolerance", "ContactNetwork",
+    "random_gas", "compress", "Compression", "packing_fraction",
+    "voronoi_cell_areas", "local_packing_fractions",
 ]
 __version__ = "0.1.0"
 

@@ -154,3 +154,43 @@ def test_record_refuses_times_that_go_back():
         gsd.record(sim, "never.gsd", [3.0, 2.5])
     with pytest.raises(ValueError, match="mode"):
         gsd.Writer("never.gsd", mode="x")
+
+
+def test_gsd_frames_give_the_same_g_of_r_in_freud_and_edmd2d(tmp_path):
+    """A dense fluid's frames written to GSD, read back with the gsd package: freud's
+    g(r) of them (finite-size normalisation, N - 1 partners per disk, as edmd2d's)
+    equals edmd2d.radial_distribution of the same float32 frames to rounding, and of
+    the float64 positions the simulation had to within the few pairs that float32
+    moves across a bin edge."""
+    freud = pytest.importorskip("freud", reason="freud-analysis is not installed "
+                                "(pip install freud-analysis) to cross-check g(r)")
+    sim = ed.make_gas(600, 0.6, seed=3)
+    sim.advance(until=5.0)
+    times = [6.0, 7.0, 8.0, 9.0]
+    exact = []
+    writer = gsd.Writer(tmp_path / "fluid.gsd")
+    for t in times:
+        sim.advance(until=t)
+        writer.write(sim)
+        exact.append(sim.positions)
+    writer.close()
+    width, height = sim.box.size
+    with hoomd.open(tmp_path / "fluid.gsd", "r") as frames:
+        stored = [np.asarray(f.particles.position, dtype=np.float64) for f in frames]
+        configuration = frames[0].configuration
+    assert configuration.dimensions == 2 and configuration.box[2] == 0.0
+    r_max, bins = 5.0, 50
+    rdf = freud.density.RDF(bins=bins, r_max=r_max, normalization_mode="finite_size")
+    fbox = freud.box.Box(width, height, is2D=True)
+    for points in stored:
+        rdf.compute(system=(fbox, points), reset=False)
+    # GSD centres the box at the origin; edmd2d's box starts at 0.
+    shifted = np.mod(np.array(stored)[:, :, :2] + [width / 2, height / 2], [width, height])
+    r, g_file = ed.radial_distribution(shifted, sim.box, r_max=r_max, bins=bins)
+    _, g_exact = ed.radial_distribution(np.array(exact), sim.box, r_max=r_max, bins=bins)
+    np.testing.assert_allclose(rdf.bin_centers, r, rtol=1e-6)
+    np.testing.assert_allclose(rdf.rdf, g_file, rtol=1e-5, atol=1e-6)
+    # A bin of g ~ 1 near r = 4 holds ~ 4 * 600 * 0.4 pairs per frame: one pair moved
+    # by float32 changes it by ~1e-4.
+    np.testing.assert_allclose(g_file, g_exact, atol=2e-3)
+    assert g_exact.max() > 2.0  # (the contact peak of a dense fluid)

@@ -85,3 +85,19 @@ def test_viz_is_lazy():
     code = ("import sys, edmd2d; assert 'matplotlib' not in sys.modules; "
             "edmd2d.viz.draw; assert 'matplotlib' in sys.modules")
     subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_readme_compression_example_runs(capsys):
+    text = (ROOT / "README.md").read_text()
+    block = next(b for b in re.findall(r"```python\n(.*?)```", text, re.S)
+                 if "compress(" in b)
+    namespace: dict = {}
+    exec(compile(block, "README.md", "exec"), namespace)
+    fluid, jam, net = namespace["fluid"], namespace["jam"], namespace["net"]
+    # The README says Z ~ 9 at 0.65 (Henderson: 8.98), jammed near 0.845, ~3.9.
+    phi, z = fluid.packing_fractions[-20:], fluid.reduced_pressures[-20:]
+    assert abs(z.mean() - ed.theory.henderson_z(phi.mean())) < 0.05 * z.mean()
+    assert 8.0 < z[-3:].mean() < 10.0
+    assert jam.reached == "jammed" and abs(jam.packing_fraction - 0.845) < 0.01
+    assert abs(net.mean_contact_number - 3.9) < 0.15
+    assert "jammed" in capsys.readouterr().out

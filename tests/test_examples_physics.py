@@ -26,6 +26,8 @@ def load(name):
     ("equation_of_state", {"N": 200, "ETAS": (0.2, 0.5), "COLLISIONS": 20_000}),
     ("maxwell_boltzmann", {"N": 200}),
     ("rdf_dense_fluid", {"N": 300, "FRAMES": 5}),
+    ("jammed_packing", {"N": 200}),
+    ("compression_eos", {"N": 100, "RATE": 1e-2}),
 ])
 def test_example_writes_its_figure(name, small, tmp_path, capsys):
     module = load(name)

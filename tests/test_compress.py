@@ -261,3 +261,13 @@ def test_compress_shows_progress(capsys):
         warnings.simplefilter("error")
         ed.compress(gas, 0.5, rate=0.05, progress=True)
     assert "compress" in capsys.readouterr().err
+
+
+def test_collisions_that_cannot_come_before_the_disk_fills_the_box():
+    """A lone disk at rest in a periodic box never collides: asked for a collision while
+    it grows, it grows until it is as wide as the box, and the run stops there."""
+    sim = ed.Simulation([[2.0, 2.0]], [[0.0, 0.0]], 0.5, box=ed.Box(4.0, 4.0), growth=1.0)
+    with pytest.raises(RuntimeError, match="grew as wide as the box"):
+        sim.advance(collisions=1)
+    assert sim.time == pytest.approx(3.0, rel=1e-6)  # diameter 1 (1 + t) = 4
+    assert sim.counts.collisions == 0

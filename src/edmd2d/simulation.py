@@ -814,7 +814,8 @@ class Simulation:
             return self
         if status == _layout.REACHED_COLLISIONS:
             return self
-        if status in (_layout.REACHED_TIME, _layout.NO_EVENTS) and t_end == outgrown:
+        if (self._growth is not None and t_end == outgrown
+                and status in (_layout.REACHED_TIME, _layout.NO_EVENTS)):
             self._time = t_end
             raise RuntimeError(
                 f"the largest disk grew as wide as the box at t={t_end} before "

@@ -23,6 +23,8 @@ __all__ = [
     "trajectory",
     "mean_squared_displacement",
     "hexatic_order",
+    "voronoi_cell_areas",
+    "local_packing_fractions",
 ]
 
 

@@ -146,9 +146,27 @@ def make_gas(
 def lattice_packing_limit(n: int, *, radius=0.5, radii=None, aspect=1.0, periodic=True) -> float:
     """The largest packing fraction :func:`make_gas` reaches for these disks (bisection).
 
+    Parameters
+    ----------
+    n : int
+        Number of disks, >= 1.
+    radius : float, default 0.5
+        Radius of every disk when ``radii`` is not given.
+    radii : float or array_like, shape (n,), optional
+        Per-disk radii.
+    aspect : float, default 1.0
+        Box width / height.
+    periodic : bool or (bool, bool), default True
+        As for :class:`~edmd2d.Box`.
+
+    Returns
+    -------
+    float
+
     Examples
     --------
     A square periodic box takes a lattice of 1000 equal disks up to
+
     >>> round(lattice_packing_limit(1000), 3)
     0.873
     """

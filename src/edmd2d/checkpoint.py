@@ -50,8 +50,10 @@ from .geometry import Box, Wall
 
 __all__ = ["FORMAT", "VERSION", "save", "load", "read_metadata"]
 
+#: The format name in every checkpoint's header; :func:`load` refuses other files.
 FORMAT = "edmd2d-checkpoint"
-# Bump when what a checkpoint holds changes incompatibly; load refuses other versions.
+#: The format version, bumped when what a checkpoint holds changes incompatibly;
+#: :func:`load` refuses other versions.
 VERSION = 1
 
 _HEADER = "header.json"

@@ -53,9 +53,13 @@ from . import operations as _op
 __all__ = ["main", "UserError", "CONFIG_FILE", "GSD_FILE", "CHECKPOINT_FILE",
            "RESULTS_FILE"]
 
+#: The copy of the configuration in the output directory.
 CONFIG_FILE = "config.toml"
+#: The GSD trajectory in the output directory.
 GSD_FILE = "trajectory.gsd"
+#: The checkpoint in the output directory, from which ``edmd2d resume`` continues.
 CHECKPOINT_FILE = "checkpoint.edmd2d"
+#: The measured values with their error bars, as JSON, in the output directory.
 RESULTS_FILE = "results.json"
 # The kind of metadata `edmd2d run` puts in its checkpoints, and its version.
 _RUN_FORMAT = "edmd2d-run"

@@ -35,11 +35,11 @@ import numpy as np
 
 from ._validate import as_float_array, as_positive_float, indices_where, per_disk
 from .analysis import _boxsize, _min_image, _simulation_type, _wrap
-from .geometry import Box, Wall
+from .geometry import Box
 
 __all__ = ["ContactNetwork", "contact_network", "contact_tolerance", "BOX_SIDES"]
 
-#: Names of the box walls in :attr:`ContactNetwork.box_contacts` (side codes 0 to 3:
+#: Names of the box walls in ``ContactNetwork.box_contacts`` (side codes 0 to 3:
 #: ``x = 0``, ``x = width``, ``y = 0``, ``y = height``), as elsewhere in edmd2d.
 BOX_SIDES = ("left", "right", "bottom", "top")
 
@@ -146,7 +146,7 @@ class ContactNetwork:
 
     @property
     def is_isostatic(self) -> bool:
-        """Whether the non-rattlers hold exactly :attr:`n_isostatic` contacts (and are
+        """Whether the non-rattlers hold exactly ``n_isostatic`` contacts (and are
         not all rattlers)."""
         return self.n_disks > self.n_rattlers and self.excess_contacts == 0
 
@@ -325,26 +325,12 @@ def _inputs(source, box, radii, walls):
         rad = per_disk("radii", radii, len(pos))
         if (rad <= 0).any():
             raise ValueError(f"radii must be > 0; disks {indices_where(rad <= 0)} are not")
+        from .simulation import _as_walls
+
         segs = _as_walls(walls)
     pos = _wrap(np.ascontiguousarray(pos, dtype=np.float64), box)
     ends = np.array([[w.start, w.end] for w in segs], dtype=np.float64).reshape(-1, 2, 2)
     return pos, np.asarray(rad, dtype=np.float64), box, ends
-
-
-def _as_walls(walls) -> list[Wall]:
-    if walls is None:
-        return []
-    if isinstance(walls, Wall):
-        return [walls]
-    try:
-        items = list(walls)
-    except TypeError:
-        raise TypeError(f"walls must be an edmd2d.Wall or a sequence of them, got "
-                        f"{type(walls).__name__}") from None
-    for k, w in enumerate(items):
-        if not isinstance(w, Wall):
-            raise TypeError(f"walls[{k}] must be an edmd2d.Wall, got {type(w).__name__}")
-    return items
 
 
 def _as_tol(tol) -> float:

@@ -75,6 +75,16 @@ class Wall:
     A disk can hit either side of the segment or one of its two end points (an end point
     acts as a fixed circle of radius 0).  Segments must lie inside the box.
 
+    Parameters
+    ----------
+    start, end : array_like, shape (2,)
+        The end points ``(x, y)``, distinct.  Both belong to the wall.
+
+    Raises
+    ------
+    TypeError, ValueError
+        For end points that are not two finite numbers each, or that coincide.
+
     Examples
     --------
     >>> Wall((5, 0), (5, 20)).length
@@ -103,6 +113,25 @@ class Wall:
         """Walls along a polyline through ``vertices`` (closed by default).
 
         A closed polygon needs at least 3 vertices, an open polyline at least 2.
+
+        Parameters
+        ----------
+        vertices : array_like, shape (K, 2)
+            The corners in order.  Counterclockwise vertices put the inside of the
+            polygon on the left side of every segment.
+        closed : bool, default True
+            Whether a last segment joins the last vertex back to the first.
+
+        Returns
+        -------
+        list of Wall
+            ``K`` segments for a closed polygon, ``K - 1`` for an open polyline.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For vertices that are not an array of finite ``(x, y)`` pairs, too few
+            vertices, or two consecutive vertices that coincide.
 
         Examples
         --------

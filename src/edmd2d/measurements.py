@@ -162,7 +162,13 @@ class Measurement:
 
         Box walls are listed when they were touched (or when no segment was); wall
         segments by their mean pressure and, for up to 8 touched sides, one line each
-        with the segment's mean force (``walls[k]`` is ``sim.walls[k]``)."""
+        with the segment's mean force (``walls[k]`` is ``sim.walls[k]``).
+
+        Returns
+        -------
+        str
+            The lines, joined by newlines, ready to print.
+        """
 
         def pm(value, err):
             return f"{value:.6g} +- {err:.2g}" if np.isfinite(err) else f"{value:.6g}"
@@ -226,6 +232,11 @@ def degrees_of_freedom(sim) -> tuple[int, tuple[bool, bool]]:
     ``f = 2N - 2`` in a fully periodic box of free disks, ``2N - 1`` in a channel
     periodic along one axis, ``2N`` in a closed box.
 
+    Parameters
+    ----------
+    sim : Simulation
+        The simulation whose disks, box, walls, gravity and thermostat count.
+
     Returns
     -------
     f : int
@@ -258,6 +269,16 @@ def kinetic_temperature(sim) -> float:
     components of the total momentum, ``M`` is the total mass and ``f`` comes from
     :func:`degrees_of_freedom`: the centre-of-mass motion along a conserved axis carries
     no heat.  ``nan`` when ``f <= 0`` (a single disk in a periodic box).
+
+    Parameters
+    ----------
+    sim : Simulation
+        The simulation, read at its current :attr:`~edmd2d.Simulation.time`.
+
+    Returns
+    -------
+    float
+        ``kT``, or ``nan`` without degrees of freedom.
 
     Examples
     --------

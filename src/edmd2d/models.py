@@ -56,6 +56,9 @@ from ._validate import as_float_array
 
 __all__ = ["Model", "STALL_COLLISIONS", "default_tc"]
 
+#: Collisions of one disk in a row at the same time (to within rounding) after which a
+#: run without the TC model (``tc = 0``) stops with a ``RuntimeError``: an inelastic
+#: collapse.
 STALL_COLLISIONS = _response.STALL_COLLISIONS
 # Largest species id: a table of coefficients has one row per species up to the largest.
 MAX_SPECIES = 1023
@@ -64,7 +67,22 @@ MAX_SPECIES = 1023
 def default_tc(radii: np.ndarray, velocities: np.ndarray, movable: np.ndarray) -> float:
     """The default TC-model duration: ``1e-5 * d / v_rms`` (``d`` the mean diameter
     and ``v_rms`` the root-mean-square speed of the ``movable`` disks; ``1e-5 * d``
-    time units if they all rest, or over all disks if none can move)."""
+    time units if they all rest, or over all disks if none can move).
+
+    Parameters
+    ----------
+    radii : ndarray, shape (N,)
+        The radii.
+    velocities : ndarray, shape (N, 2)
+        The velocities.
+    movable : ndarray of bool, shape (N,)
+        Which disks can move (finite mass).
+
+    Returns
+    -------
+    float
+        The duration ``tc``, > 0.
+    """
     if movable.any():
         radii, velocities = radii[movable], velocities[movable]
     d = 2.0 * float(np.mean(radii))
@@ -141,8 +159,9 @@ class Model:
         self.refill()
 
     def refill(self) -> None:
-        """Top the buffer of uniform random numbers up from :attr:`rng` (the ones left
-        move to its front, so the draws follow one stream whatever the refills)."""
+        """Top the buffer of uniform random numbers up from the model's generator
+        ``rng`` (the ones left move to its front, so the draws follow one stream
+        whatever the refills)."""
         left = self.buffer[self.cursor[0]:].copy()
         self.buffer[:len(left)] = left
         self.buffer[len(left):] = self.rng.random(len(self.buffer) - len(left))
@@ -156,13 +175,33 @@ class Model:
         return float(self.thermo[0]), float(self.thermo[1]) / len(self.species)
 
     def engine_params(self) -> tuple:
-        """The tuple the compiled engine reads (see ``_engine/response.py``)."""
+        """The tuple the compiled engine reads (see ``_engine/response.py``).
+
+        Returns
+        -------
+        tuple
+            ``(table, species, wall, tc, t_last, streak, hold, wall_kt, thermo,
+            buffer, cursor)``: the model's own arrays, not copies, so that the
+            engine's updates of the per-disk state are the model's.
+        """
         return (self.table, self.species, self.wall, self.tc, self.t_last, self.streak,
                 self.hold, self.wall_kt, self.thermo, self.buffer, self.cursor)
 
     def permuted(self, perm: np.ndarray) -> Model:
-        """A copy that follows a re-sort of the engine's rows (new row ``k`` is old row
-        ``perm[k]``); ``self`` is left as it was."""
+        """A copy that follows a re-sort of the engine's rows; ``self`` is left as it
+        was.
+
+        Parameters
+        ----------
+        perm : ndarray of int, shape (N,)
+            The re-sort: new row ``k`` is old row ``perm[k]``.
+
+        Returns
+        -------
+        Model
+            The copy, its per-disk arrays (species, last collision times, streaks)
+            in the new order.
+        """
         new = copy.copy(self)
         new.species = np.ascontiguousarray(self.species[perm])
         new.t_last = np.ascontiguousarray(self.t_last[perm])

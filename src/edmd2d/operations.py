@@ -62,7 +62,8 @@ __all__ = ["Trigger", "Every", "At", "Blocks", "Operation", "Callback", "Measure
            "RecordTrajectory", "RecordFrames", "Snapshot", "WriteGSD", "Checkpoint",
            "run", "WALL_CLOCK_SLICE"]
 
-# Collisions at most between two stops while a wall-clock trigger is active.
+#: Collisions at most between two stops while a wall-clock trigger is active, so that
+#: ``Every(seconds=...)`` fires within a fraction of a second of its time.
 WALL_CLOCK_SLICE = 100_000
 
 

@@ -12,10 +12,33 @@ __all__ = ["bar"]
 
 
 def bar(progress, *, total, unit: str, desc: str):
-    """The bar a call with ``progress`` should update: ``None`` for ``False``/``None``,
-    a new tqdm bar over ``total`` ``unit`` for ``True``, or ``progress`` itself if it is
-    already a bar (anything with ``update``).  ``(bar, owned)``: whether the caller
-    created it (and must close it)."""
+    """The bar a call with ``progress`` should update.
+
+    Parameters
+    ----------
+    progress : bool, None or tqdm bar
+        What the caller was given: ``False`` or ``None`` for no bar, ``True`` for a
+        new one, or a bar (anything with ``update``) to advance.
+    total : float or None
+        The total of a new bar (``None``: unknown).
+    unit : str
+        The unit of a new bar (``"frame"``, ``"t"``, ...).
+    desc : str
+        The label of a new bar.
+
+    Returns
+    -------
+    bar : tqdm bar or None
+        ``None`` for no bar, a new tqdm bar over ``total`` ``unit`` for ``True``, or
+        ``progress`` itself.
+    owned : bool
+        Whether the bar was created here, so that the caller must close it.
+
+    Raises
+    ------
+    TypeError
+        For any other ``progress``.
+    """
     if progress is None or progress is False:
         return None, False
     if progress is True:

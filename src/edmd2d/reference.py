@@ -751,7 +751,18 @@ class ReferenceSimulation:
         return g if side % 2 == 0 else -g
 
     def next_event(self):
-        """The earliest event from now: (dt, kind, i, partner, detail)."""
+        """The earliest event from now, found by examining every pair and every wall.
+
+        Returns
+        -------
+        tuple
+            ``(dt, kind, i, partner, detail)``: the time from now (``inf`` if
+            nothing ever happens), the kind (``"disk"``, ``"wall"``, ``"box"``, or
+            ``None``), the disk, its partner (a disk, a segment or a box side) and
+            what resolving the contact needs (a pair's periodic image shift; a
+            segment's part that is hit and its end points in that image; ``None``
+            for a box wall).
+        """
         if self._accelerated():
             return self._next_event_accelerated()
         best = (INF, None, -1, -1, None)
@@ -1027,7 +1038,22 @@ class ReferenceSimulation:
         self.wall_collisions += 1
 
     def advance(self, until=None, collisions=None):
-        """Events in time order up to ``until`` / ``collisions``."""
+        """Process events in time order up to a time or a number of collisions.
+
+        Parameters
+        ----------
+        until : float, optional
+            Process every event up to this time, then let all disks fly on to it.
+        collisions : int, optional
+            Stop right after this many further disk-disk collisions.  With both, the
+            run stops at whichever comes first.
+
+        Returns
+        -------
+        ReferenceSimulation
+            ``self``; each processed event is appended to ``events`` as ``(time,
+            kind, disk, partner)``.
+        """
         target = INF if until is None else float(until)
         todo = INF if collisions is None else int(collisions)
         done = 0
@@ -1062,31 +1088,59 @@ class ReferenceSimulation:
 
     @property
     def positions(self):
+        """The disk centres now, a new ``(N, 2)`` array."""
         return np.array(self.p)
 
     @property
     def velocities(self):
+        """The disk velocities now, a new ``(N, 2)`` array."""
         return np.array(self.v)
 
     def kinetic_energy(self):
+        """The kinetic energy of the movable disks.
+
+        Returns
+        -------
+        float
+            ``sum m v^2 / 2`` over the disks of finite mass.
+        """
         return sum(0.5 * m * _dot(v, v) for m, v in zip(self.m, self.v) if not math.isinf(m))
 
     def momentum(self):
+        """The total momentum of the movable disks.
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            ``sum m v`` over the disks of finite mass.
+        """
         return sum((m * np.array(v) for m, v in zip(self.m, self.v) if not math.isinf(m)),
                    np.zeros(2))
 
     def potential_energy(self):
-        """``-sum m g.x`` over the movable disks, ``x`` the unwrapped centre (the stored
-        one plus the whole periodic lengths :meth:`_wrap` took off): the height gained
-        through a periodic boundary is kept."""
+        """The potential energy in the uniform field ``gravity``.
+
+        Returns
+        -------
+        float
+            ``-sum m g.x`` over the movable disks, ``x`` the unwrapped centre (the
+            stored one plus the whole periodic lengths taken off at each wrap): the
+            height gained through a periodic boundary is kept.
+        """
         gx, gy = self.gravity
         w, h = self.box.width, self.box.height
         return -sum(m * (gx * (p[0] + k[0] * w) + gy * (p[1] + k[1] * h))
                     for m, p, k in zip(self.m, self.p, self.images) if not math.isinf(m))
 
     def total_energy(self):
-        """Kinetic plus potential energy: constant in an elastic run (with immovable
-        disks at rest), and ``total_energy() + dissipated`` constant otherwise."""
+        """Kinetic plus potential energy.
+
+        Returns
+        -------
+        float
+            Constant in an elastic run (with immovable disks at rest), and
+            ``total_energy() + dissipated`` constant otherwise.
+        """
         return self.kinetic_energy() + self.potential_energy()
 
 

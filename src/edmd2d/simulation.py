@@ -734,13 +734,12 @@ class Simulation:
             :attr:`time`.
         collisions : int, optional
             Stop right after this many further disk-disk collisions; :attr:`time` is
-            then the time of the last one.  ``0`` does nothing.
+            then the time of the last one.  ``0`` does nothing.  With ``until`` too,
+            the run stops at whichever comes first.
         progress : bool or tqdm bar, default False
             ``True`` shows a progress bar (:mod:`edmd2d.progress`) of the simulated
             time (or, with ``collisions`` alone, of the collisions) and the collisions
             per second; a tqdm bar passed in is advanced by the simulated time.
-
-        If both are given the run stops at whichever comes first.
 
         Returns
         -------
@@ -1106,7 +1105,12 @@ class Simulation:
                       kicks)
 
     def kinetic_energy(self) -> float:
-        """Total kinetic energy of the movable disks, ``sum m v^2 / 2``."""
+        """Total kinetic energy of the movable disks, ``sum m v^2 / 2``.
+
+        Returns
+        -------
+        float
+        """
         movable = self._invm > 0
         vel = self._velocities()[movable]
         return float(0.5 * np.dot(self._mass[movable], np.einsum("ij,ij->i", vel, vel)))
@@ -1114,14 +1118,24 @@ class Simulation:
     def wall_heat(self) -> np.ndarray:
         """Kinetic energy the heated walls gave to the disks since creation (negative:
         they took it), shape (4 + S,): the box walls x=0, x=width, y=0, y=height, then
-        each wall segment; 0 for walls that are not heated."""
+        each wall segment; 0 for walls that are not heated.
+
+        Returns
+        -------
+        numpy.ndarray, shape (4 + S,)
+        """
         return np.concatenate([self._acc[_layout.A_HEAT_BOX:_layout.A_HEAT_BOX + 4],
                                self._wacc[:, _layout.W_HEAT]])
 
     def thermostat_energy(self) -> float:
         """Kinetic energy the thermostat's redraws gave to the disks since creation
         (negative: they took it).  ``total_energy() + dissipated_energy()`` minus this and
-        ``wall_heat().sum()`` stays constant to rounding."""
+        ``wall_heat().sum()`` stays constant to rounding.
+
+        Returns
+        -------
+        float
+        """
         return float(self._acc[_layout.A_THERMOSTAT])
 
     @property
@@ -1196,11 +1210,21 @@ class Simulation:
     def dissipated_energy(self) -> float:
         """Kinetic energy lost in inelastic collisions since creation (0 for elastic
         disks): ``kinetic_energy() + dissipated_energy()`` stays constant to rounding
-        (while no immovable disk moves)."""
+        (while no immovable disk moves).
+
+        Returns
+        -------
+        float
+        """
         return float(self._acc[_layout.A_DISSIPATED])
 
     def momentum(self) -> np.ndarray:
-        """Total momentum of the movable disks, shape (2,)."""
+        """Total momentum of the movable disks.
+
+        Returns
+        -------
+        numpy.ndarray, shape (2,)
+        """
         movable = self._invm > 0
         return self._mass[movable] @ self._velocities()[movable]
 
@@ -1215,7 +1239,12 @@ class Simulation:
     def potential_energy(self) -> float:
         """Potential energy of the movable disks in the gravity field,
         ``-sum m g.r`` (zero at the origin), with :attr:`unwrapped_positions` so that
-        it stays continuous across periodic wraps; 0 without gravity."""
+        it stays continuous across periodic wraps; 0 without gravity.
+
+        Returns
+        -------
+        float
+        """
         if self._gravity is None:
             return 0.0
         movable = self._invm > 0
@@ -1224,7 +1253,12 @@ class Simulation:
     def total_energy(self) -> float:
         """``kinetic_energy() + potential_energy()``: constant to rounding for elastic
         disks (while no immovable disk moves); with inelastic collisions it decreases
-        by :meth:`dissipated_energy`."""
+        by :meth:`dissipated_energy`.
+
+        Returns
+        -------
+        float
+        """
         return self.kinetic_energy() + self.potential_energy()
 
     def set_positions(self, positions) -> None:
@@ -1310,7 +1344,17 @@ class Simulation:
     def measure(self, duration: float, **kwargs):
         """Run for ``duration`` and return the measurements over that window.
 
-        See :func:`edmd2d.measurements.measure` for the quantities and options.
+        Parameters
+        ----------
+        duration : float
+            Length of the window, > 0.
+        **kwargs
+            The options of :func:`edmd2d.measurements.measure` (``blocks``, ``area``,
+            ``progress``), which describes the quantities.
+
+        Returns
+        -------
+        Measurement
         """
         from .measurements import measure
 

@@ -354,6 +354,19 @@ class SimulationAnimation(manim.FuncAnimation):
     Its :meth:`save` is :func:`save`: the same writers (GIF through Pillow, video through
     ffmpeg or imageio-ffmpeg), the same checks before the first frame is drawn.
 
+    Made by :func:`animate`, which checks its arguments; not meant to be built directly.
+
+    Parameters
+    ----------
+    scene : object
+        The artists of one simulation on one Axes (built by :func:`animate`).
+    frame_times : numpy.ndarray
+        Simulation time of each frame, increasing.
+    fps : float
+        Frames per second.
+    blit : bool
+        Whether matplotlib redraws only the artists that change.
+
     Attributes
     ----------
     sim : Simulation
@@ -384,7 +397,16 @@ class SimulationAnimation(manim.FuncAnimation):
         """Advance the simulation to frame ``k``'s time and update the artists.
 
         This is what the animation calls for each frame; it does not redraw the canvas.
-        Returns the artists that changed.
+
+        Parameters
+        ----------
+        k : int
+            The frame, ``0 <= k < len(frame_times)``.
+
+        Returns
+        -------
+        list
+            The artists that changed.
 
         Raises
         ------
@@ -411,6 +433,25 @@ class SimulationAnimation(manim.FuncAnimation):
         :meth:`matplotlib.animation.Animation.save`, and ``colors`` as for :func:`save`
         (colours per GIF frame).
 
+        Parameters
+        ----------
+        filename : str or os.PathLike
+            The file; its suffix picks the format.
+        writer : str or matplotlib.animation.AbstractMovieWriter, optional
+            A writer by name (``"pillow"``, ``"ffmpeg"``, ...) or an instance; by
+            default the one for the suffix.
+        fps : float, optional
+            Frames per second of the file; the animation's own by default.
+        dpi : float, optional
+            Resolution; for GIFs three quarters of the figure's by default.
+        codec, bitrate, extra_args, metadata, extra_anim, savefig_kwargs : optional
+            As for :meth:`matplotlib.animation.Animation.save`.
+        progress_callback : callable, optional
+            Called as ``progress_callback(frame_index, total_frames)`` after each
+            frame.
+        colors : int, optional
+            Colours per GIF frame (32 by default, at most 256).
+
         Raises
         ------
         RuntimeError
@@ -428,7 +469,18 @@ class SimulationAnimation(manim.FuncAnimation):
 
     def to_html5_video(self, embed_limit=None) -> str:
         """As :meth:`matplotlib.animation.Animation.to_html5_video`, with imageio-ffmpeg's
-        ffmpeg when there is none on the PATH."""
+        ffmpeg when there is none on the PATH.
+
+        Parameters
+        ----------
+        embed_limit : float, optional
+            The largest video in MB (matplotlib's ``animation.embed_limit`` by default).
+
+        Returns
+        -------
+        str
+            An HTML ``<video>`` element with the video embedded (base64).
+        """
         exe = None
         if mpl.rcParams["animation.writer"] in ("ffmpeg", "ffmpeg_file"):
             exe = _ffmpeg_executable("an HTML5 video")
@@ -475,6 +527,21 @@ class FramesAnimation(SimulationAnimation):
     It saves like :class:`SimulationAnimation` (the same writers and checks) but runs
     no simulation, so it can be played and saved again.
 
+    Made by :func:`animate_frames`, which checks its arguments; not meant to be built
+    directly.
+
+    Parameters
+    ----------
+    scene : object
+        The artists on one Axes, drawn from the first frame (built by
+        :func:`animate_frames`).
+    frames : list of Snapshot
+        The frames, in order.
+    fps : float
+        Frames per second.
+    blit : bool
+        Whether matplotlib redraws only the artists that change.
+
     Attributes
     ----------
     frames : list of Snapshot
@@ -493,15 +560,17 @@ class FramesAnimation(SimulationAnimation):
                          blit=blit)
 
     def goto_frame(self, k: int) -> list:
-        """Show frame ``k``; returns the artists that changed.
+        """Show frame ``k``.
 
         Parameters
         ----------
         k : int
+            The frame, ``0 <= k < len(frames)``.
 
         Returns
         -------
         list
+            The artists that changed.
         """
         if k == 0:
             self._scene.reset()

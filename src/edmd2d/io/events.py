@@ -29,9 +29,22 @@ _HEADER = "time,kind,disk,partner,impulse\n"
 
 class EventWriter:
     """A callable for :meth:`~edmd2d.Simulation.stream_events` that writes each batch
-    to ``path`` (``mode`` ``"w"`` creates the file with a header line, ``"a"`` appends)
-    and flushes it, so that a run stopped half-way leaves every event delivered so far
-    on disk."""
+    to a CSV file and flushes it, so that a run stopped half-way leaves every event
+    delivered so far on disk.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file to write.
+    mode : {"w", "a"}, default "w"
+        ``"w"`` creates (or truncates) the file and writes the header line
+        ``time,kind,disk,partner,impulse``; ``"a"`` appends to an existing event file.
+
+    Raises
+    ------
+    ValueError
+        For another ``mode``.
+    """
 
     def __init__(self, path, mode: str = "w") -> None:
         if mode not in ("w", "a"):
@@ -47,6 +60,7 @@ class EventWriter:
         self._file.flush()
 
     def close(self) -> None:
+        """Close the file (also on leaving a ``with`` block)."""
         self._file.close()
 
     def __enter__(self) -> EventWriter:
@@ -57,8 +71,25 @@ class EventWriter:
 
 
 def read(path) -> np.ndarray:
-    """The events of a file written by :class:`EventWriter`, as a structured array
-    with the fields of :data:`edmd2d.simulation.EVENT_DTYPE`."""
+    """The events of a file written by :class:`EventWriter`.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The event file.
+
+    Returns
+    -------
+    ndarray
+        One element per event, in the file's order, with the fields of
+        :data:`edmd2d.simulation.EVENT_DTYPE` (``time``, ``kind``, ``disk``,
+        ``partner``, ``impulse``).
+
+    Raises
+    ------
+    ValueError
+        For a file that does not start with the event file's header line.
+    """
     from ..simulation import EVENT_DTYPE
 
     with open(path, encoding="ascii") as f:

@@ -94,7 +94,18 @@ class Writer:
         self._temperatures: list[float] = []
 
     def write(self, sim) -> None:
-        """Append the state of ``sim`` at its current time as a frame."""
+        """Append the state of ``sim`` at its current time as a frame.
+
+        Parameters
+        ----------
+        sim : Simulation
+            The simulation to write; it is read, not advanced.
+
+        Raises
+        ------
+        TypeError
+            For anything but a :class:`~edmd2d.Simulation`.
+        """
         from ..simulation import Simulation
 
         if not isinstance(sim, Simulation):

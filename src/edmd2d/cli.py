@@ -1,4 +1,4 @@
-"""The command line: ``edmd2d run``, ``edmd2d resume`` and ``edmd2d info``.
+"""The command line: ``edmd2d run``, ``edmd2d resume``, ``edmd2d info`` and ``edmd2d sweep``.
 
 ``edmd2d run CONFIG.toml`` builds the system a TOML configuration describes (see
 :mod:`edmd2d.config` and ``examples/gas.toml``), runs it through its equilibration and
@@ -22,9 +22,14 @@ progress bar (``--no-progress`` hides it).
 
 ``edmd2d resume CHECKPOINT`` continues a run from its checkpoint, bit for bit as if it
 had not stopped (``--until T`` to run to another end); ``edmd2d info FILE`` describes
-a GSD file or a checkpoint.  Mistakes in the input (a misspelt key, a value of the
-wrong type, a missing file) end with a message naming the key and its line, on standard
-error, and exit code 2; a simulation that fails (an inelastic collapse, say) with its
+a GSD file or a checkpoint.  ``edmd2d sweep CONFIG.toml`` measures the equation of
+state over a grid of parameter sets and seeds (:mod:`edmd2d.ensemble`, a sweep
+configuration of :func:`edmd2d.config.load_sweep`, ``examples/eos_sweep.toml``) on a
+Dask cluster (a local one by default, ``--scheduler ADDRESS`` or ``serial``), writing
+``results.csv`` and ``results.json``; run again, it resumes (exit code 1 if a task
+failed).  Mistakes in the input (a misspelt key, a value of the wrong type, a missing
+file) end with a message naming the key and its line, on standard error, and exit
+code 2; a simulation that fails (an inelastic collapse, say) with its
 message and exit code 1.
 """
 
@@ -32,6 +37,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import inspect
 import json
 import math
 import os
@@ -39,6 +45,7 @@ import secrets
 import shutil
 import sys
 import tempfile
+import textwrap
 import time as _time
 import zipfile
 from pathlib import Path
@@ -168,18 +175,62 @@ def _parser() -> argparse.ArgumentParser:
                     "physics, counts and the run it belongs to).")
     info.add_argument("file", type=Path, metavar="FILE", help="a .gsd file or a checkpoint")
     info.set_defaults(handler=_cmd_info)
+
+    sweep = sub.add_parser(
+        "sweep", help="measure the equation of state over a grid of parameters",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        description="Run the equation-of-state task of edmd2d.ensemble (build a gas, "
+                    "equilibrate it, measure Z, the pressure, the temperature, the "
+                    "collision rate and |psi_6| in blocks) for every parameter set of the "
+                    "configuration's grid and every replica, each with its own seed, on a "
+                    "Dask cluster, and write results.csv (a row per task), results.json "
+                    "and tasks/<task-id>/ (each task's checkpoint) into the output "
+                    "directory.  Run again with the same output, the sweep resumes: "
+                    "finished tasks are kept, the others continue from their checkpoints "
+                    "(a directory of another sweep is refused).",
+        epilog="A sweep configuration (see examples/eos_sweep.toml) has the [gas] and [run]\n"
+               "tables of 'edmd2d run --help' (not its [model] and [[walls]]; [output] takes\n"
+               "checkpoint_every only) and a [sweep] table:\n\n"
+               + _config_example(_config.load_sweep.__doc__)
+               + "\n[run] also takes equilibrate_collisions (collisions per disk, instead of\n"
+                 "equilibrate).  The local cluster has one single-threaded worker process per\n"
+                 "core (or --workers N).  Dask is an optional dependency: pip install\n"
+                 "'edmd2d[ensemble]'.\n")
+    sweep.add_argument("config", type=Path, metavar="CONFIG.toml",
+                       help="the sweep configuration")
+    sweep.add_argument("--scheduler", metavar="ADDRESS|serial",
+                       help="the address of a Dask scheduler (tcp://host:8786), or 'serial' "
+                            "for one task after another in this process, without Dask "
+                            "(default: a local cluster)")
+    sweep.add_argument("--workers", type=_positive_int, metavar="N",
+                       help="worker processes of the local cluster (default: one per core)")
+    sweep.add_argument("--output", "-o", type=Path, metavar="DIR",
+                       help="the output directory (default: CONFIG-sweep/ next to the "
+                            "configuration)")
+    sweep.add_argument("--no-progress", action="store_true", help="no progress bar")
+    sweep.set_defaults(handler=_cmd_sweep)
     return parser
 
 
-def _config_example() -> str:
-    """The annotated configuration of :mod:`edmd2d.config`'s docstring."""
-    doc = _config.__doc__.split("::", 1)[1]
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be >= 1, got {value}")
+    return value
+
+
+def _config_example(doc: str | None = None) -> str:
+    """The annotated configuration of a docstring (default :mod:`edmd2d.config`'s)."""
+    doc = inspect.cleandoc(_config.__doc__ if doc is None else doc).split("::", 1)[1]
     block = []
     for line in doc.splitlines()[1:]:
         if line.strip() and not line.startswith("    "):
             break
-        block.append(line[2:])
-    return "\n".join(block).strip("\n") + "\n"
+        block.append(line)
+    return textwrap.dedent("\n".join(block)).strip("\n") + "\n"
 
 
 # ------------------------------------------------------------------ run and resume
@@ -525,6 +576,70 @@ def _load_checkpoint(path: Path):
         raise UserError(f"{path}: no such file") from None
     except (OSError, ValueError) as exc:
         raise UserError(str(exc)) from None
+
+
+# ------------------------------------------------------------------ sweep
+def _cmd_sweep(args) -> int:
+    from . import ensemble
+
+    cfg = _config.load_sweep(args.config)
+    out = args.output if args.output is not None else (
+        args.config.parent / f"{args.config.stem}-sweep")
+    scheduler = args.scheduler
+    if args.workers is not None and scheduler is not None:
+        raise UserError("--workers sets the size of the local cluster; it cannot go with "
+                        "--scheduler")
+    if scheduler != "serial":
+        try:
+            import distributed  # noqa: F401
+        except ImportError:
+            raise UserError("a sweep on Dask needs dask.distributed: pip install "
+                            "'edmd2d[ensemble]' (or give --scheduler serial)") from None
+    sweep = cfg.data["sweep"]
+    points = sweep["parameters"]
+    total = len(points) * sweep["replicas"]
+    where = ("in this process" if scheduler == "serial" else
+             f"on {scheduler}" if scheduler is not None else
+             f"on a local cluster of {args.workers or os.cpu_count()} workers")
+    _say(f"sweeping {len(points)} parameter sets x {sweep['replicas']} replicas = {total} "
+         f"tasks {where}; results in {out}")
+    try:
+        result = ensemble.sweep(
+            ensemble.eos_task, points, replicas=sweep["replicas"], seed=sweep["seed"],
+            output=out, scheduler=scheduler, workers=args.workers,
+            progress=not args.no_progress,
+            metadata={"config_file": str(args.config), "config": cfg.text})
+    except KeyboardInterrupt:
+        done = ensemble.load(out)
+        _say(f"interrupted: {len(done.tasks)} of {done.total} tasks finished; run the same "
+             "command again to resume", sys.stderr)
+        return 130
+    except (OSError, ValueError) as exc:
+        raise UserError(str(exc)) from None
+    _print_sweep(result, points)
+    return 0 if result.complete else 1
+
+
+def _print_sweep(result, points: list) -> None:
+    varied = [k for k in dict.fromkeys(k for p in points for k in p)
+              if len({json.dumps(p.get(k)) for p in points}) > 1]
+    head = "".join(f"{k:>18}" for k in varied)
+    _say(f"{'task':<12}{head} {'Z':>10} {'+- error':<9} {'T':>9} {'coll/disk/t':>12} "
+         f"{'|psi6|':>7}")
+    for t in result.tasks:
+        cells = "".join(f"{str(t['parameters'].get(k)):>18}" for k in varied)
+        v = t["values"]
+        if t["status"] != "ok":
+            _say(f"{t['task']:<12}{cells} failed: {t['error']['type']}: "
+                 f"{t['error']['message']}")
+            continue
+        err = v["Z_error"]
+        err = f"{err:<9.2g}" if err is not None and math.isfinite(err) else f"{'-':<9}"
+        _say(f"{t['task']:<12}{cells} {v['Z']:>10.5f} {err} {v['temperature']:>9.5f} "
+             f"{v['collision_rate']:>12.5g} {v['psi6']:>7.3f}")
+    failed = len(result.failed)
+    _say(f"{len(result.tasks)} of {result.total} tasks finished, {failed} failed; results in "
+         f"{result.output / 'results.csv'}")
 
 
 # ------------------------------------------------------------------ info

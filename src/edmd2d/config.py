@@ -11,6 +11,8 @@ and ``packing_fraction``, and ``[run]`` with ``duration``, are required::
     mass = 1.0
     aspect = 1.0               # box width / height
     periodic = true            # or false (walled box), or [true, false] (a channel)
+    start = "lattice"          # or "random" (edmd2d.random_gas: a disordered start,
+                               # packing_fraction <= 0.5)
 
     [[gas.species]]            # ... or a mixture: one table per species, instead of
     radius = 0.5               # gas.radius and gas.mass
@@ -54,6 +56,7 @@ crosses are left out (their number is reported).
 from __future__ import annotations
 
 import difflib
+import itertools
 import math
 import re
 import sys
@@ -67,7 +70,8 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-__all__ = ["ConfigError", "RunConfig", "load", "loads", "build"]
+__all__ = ["ConfigError", "RunConfig", "load", "loads", "build", "load_sweep",
+           "loads_sweep", "task_config", "SWEEP_KEYS"]
 
 
 class ConfigError(ValueError):
@@ -196,6 +200,15 @@ def _restitution(value):
     return _number(0.0, 1.0, lo_open=True)(value)
 
 
+def _choice(*options):
+    def check(value):
+        if value not in options or not isinstance(value, str):
+            return None, (f"expected one of {', '.join(map(repr, options))}, got "
+                          f"{_shown(value)}")
+        return value, None
+    return check
+
+
 def _polygon(value):
     if not isinstance(value, list) or len(value) < 3:
         return None, f"expected a list of at least 3 points [x, y], got {_shown(value)}"
@@ -216,6 +229,7 @@ _GAS = {
     "mass": (_number(0.0, lo_open=True), OPTIONAL),
     "aspect": (_number(0.0, lo_open=True), 1.0),
     "periodic": (_periodic, True),
+    "start": (_choice("lattice", "random"), "lattice"),
 }
 _SPECIES = {
     "radius": (_number(0.0, lo_open=True), REQUIRED),
@@ -306,13 +320,7 @@ def loads(text: str, path: str = "<config>") -> RunConfig:
     ...     print(exc)
     <config>, line 3: gas.packing_fractoin: unknown key (did you mean 'packing_fraction'?)
     """
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        found = re.search(r"line (\d+)", str(exc))
-        raise ConfigError(f"not valid TOML: {exc}", line=int(found.group(1)) if found else None,
-                          path=path) from None
-    cfg = RunConfig({}, text, path, _key_lines(text))
+    raw, cfg = _parse(text, path)
     data = cfg.data
     for name in raw:
         if name not in _TABLES:
@@ -334,6 +342,17 @@ def loads(text: str, path: str = "<config>") -> RunConfig:
     _check_wall_temperatures(cfg, raw.get("model", {}))
     _check_walls(cfg, raw.get("walls", []))
     return cfg
+
+
+def _parse(text: str, path: str):
+    """The TOML of ``text`` as a dict, and an empty :class:`RunConfig` with its lines."""
+    try:
+        raw = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        found = re.search(r"line (\d+)", str(exc))
+        raise ConfigError(f"not valid TOML: {exc}", line=int(found.group(1)) if found else None,
+                          path=path) from None
+    return raw, RunConfig({}, text, path, _key_lines(text))
 
 
 def _check_table(cfg, where: tuple, value: dict, schema: dict, skip=()) -> dict:
@@ -432,6 +451,270 @@ def _check_walls(cfg, walls) -> None:
     cfg.data["walls"] = rows
 
 
+# ------------------------------------------------------------------ sweeps
+# The tables of a sweep's parameter sets: those of a run, less the physics and the
+# walls (a sweep measures the equation of state of a gas), with two more keys.
+_SWEEP_RUN = {**_RUN, "equilibrate_collisions": (_number(0.0), OPTIONAL)}
+_SWEEP_OUTPUT = {"checkpoint_every": (_number(0.0, lo_open=True), OPTIONAL)}
+_SWEEP_TABLES = {"gas": _GAS, "run": _SWEEP_RUN, "output": _SWEEP_OUTPUT}
+_SWEEP = {"replicas": (_integer(1), 1), "seed": (_integer(0), OPTIONAL)}
+
+#: The keys of a sweep's parameter set, each with the table it belongs to: a parameter
+#: set is one flat dict (``{"n": 400, "packing_fraction": 0.3, "duration": 50.0}``).
+SWEEP_KEYS: dict[str, str] = {
+    **{key: table for table, schema in _SWEEP_TABLES.items() for key in schema},
+    "species": "gas",
+}
+
+
+def load_sweep(path) -> RunConfig:
+    """Read and check the sweep configuration file ``path`` (``edmd2d sweep``).
+
+    A sweep configuration has the ``[gas]`` and ``[run]`` tables of a run
+    configuration (``[gas]`` with its ``[[gas.species]]``, ``[run]`` with one more
+    key, ``equilibrate_collisions``), an optional ``[output]`` table with
+    ``checkpoint_every`` only, and a ``[sweep]`` table::
+
+        [sweep]
+        replicas = 2              # runs of each parameter set, each with its own seed
+        seed = 2024               # the root of every task's seed (default: drawn, recorded)
+
+        [sweep.grid]              # every combination of these lists (the last fastest)
+        packing_fraction = [0.2, 0.3, 0.4]
+        n = [100, 400]
+
+        [[sweep.points]]          # and/or parameter sets given one by one, each
+        temperature = 1.0         # combined with every combination of the grid
+
+    The keys of ``[sweep.grid]`` and ``[[sweep.points]]`` are those of ``[gas]``,
+    ``[run]`` and ``[output]`` (:data:`SWEEP_KEYS`, but not ``species``) and replace
+    their values there.  ``n``, ``packing_fraction`` and ``duration`` may be given in
+    the grid instead of their tables.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    RunConfig
+        ``data["sweep"]`` holds ``replicas``, ``seed``, ``grid`` and ``points`` and
+        ``parameters``: the list of parameter sets, flat dicts of the keys given
+        (those of the tables overridden by the grid's and the point's), in the order
+        of the tasks.  ``data["gas"]``, ``data["run"]`` and ``data["output"]`` hold
+        the keys of the tables as given (checked, without defaults).
+
+    Raises
+    ------
+    ConfigError
+        For a file that cannot be read, is not valid TOML, has an unknown table or
+        key, a value of the wrong type or out of range, or a parameter set that
+        cannot be used (naming the key and its line).
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise ConfigError("no such file", path=str(path)) from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ConfigError(f"cannot be read ({exc})", path=str(path)) from None
+    return loads_sweep(text, str(path))
+
+
+def loads_sweep(text: str, path: str = "<config>") -> RunConfig:
+    """Check the sweep configuration in the TOML string ``text`` (see :func:`load_sweep`).
+
+    Parameters
+    ----------
+    text : str
+    path : str, default "<config>"
+        The name to use in messages.
+
+    Returns
+    -------
+    RunConfig
+        As for :func:`load_sweep`.
+
+    Raises
+    ------
+    ConfigError
+        As for :func:`load_sweep`.
+
+    Examples
+    --------
+    >>> cfg = loads_sweep("[sweep]\\nreplicas = 2\\n[sweep.grid]\\n"
+    ...                   "packing_fraction = [0.2, 0.3]\\n[gas]\\nn = 100\\n"
+    ...                   "[run]\\nduration = 5\\n")
+    >>> cfg.data["sweep"]["parameters"]
+    [{'n': 100, 'duration': 5.0, 'packing_fraction': 0.2}, \
+{'n': 100, 'duration': 5.0, 'packing_fraction': 0.3}]
+    """
+    raw, cfg = _parse(text, path)
+    for name in raw:
+        if name not in ("sweep", *_SWEEP_TABLES):
+            raise cfg.error((name,), _unknown(name, ("sweep", *_SWEEP_TABLES), "table"))
+    base: dict = {}
+    for name, schema in _SWEEP_TABLES.items():
+        value = raw.get(name, {})
+        if not isinstance(value, dict):
+            raise cfg.error((name,), f"expected a table [{name}], got {_shown(value)}")
+        loose = {key: (check, OPTIONAL) for key, (check, _) in schema.items()}
+        checked = _check_table(cfg, (name,), value, loose,
+                               skip=("species",) if name == "gas" else ())
+        cfg.data[name] = {key: checked[key] for key in value if key in checked}
+        if "species" in value:
+            cfg.data[name]["species"] = value["species"]
+        base.update(cfg.data[name])
+    table = raw.get("sweep", {})
+    if not isinstance(table, dict):
+        raise cfg.error(("sweep",), f"expected a table [sweep], got {_shown(table)}")
+    sweep = _check_table(cfg, ("sweep",), table, _SWEEP, skip=("grid", "points"))
+    sweep["grid"] = _check_grid(cfg, table.get("grid", {}))
+    sweep["points"] = _check_points(cfg, table.get("points", [{}]))
+    cfg.data["sweep"] = sweep
+    parameters = []
+    for k, point in enumerate(sweep["points"]):
+        for values in itertools.product(*sweep["grid"].values()):
+            params = dict(base)
+            params.update(point)
+            params.update(zip(sweep["grid"], values))
+            try:
+                task_config(params)
+            except ConfigError as exc:
+                key = _sweep_key(exc.key, point, sweep["grid"], k)
+                raise cfg.error(key, f"{exc.message} (in the parameter set "
+                                     f"{_overrides(params, base)})") from None
+            parameters.append(params)
+    sweep["parameters"] = parameters
+    return cfg
+
+
+def _check_value(key: str, value):
+    """``value`` checked as the sweep key ``key``: (checked, problem)."""
+    table = SWEEP_KEYS[key]
+    return _SWEEP_TABLES[table][key][0](value)
+
+
+def _check_grid(cfg, grid) -> dict:
+    where = ("sweep", "grid")
+    if not isinstance(grid, dict):
+        raise cfg.error(where, "expected a table [sweep.grid] of lists of values")
+    out = {}
+    for key, values in grid.items():
+        _known_sweep_key(cfg, where + (key,), key)
+        if not isinstance(values, list) or not values:
+            raise cfg.error(where + (key,), f"expected a list of values, got {_shown(values)}")
+        checked = []
+        for value in values:
+            value, problem = _check_value(key, value)
+            if problem:
+                raise cfg.error(where + (key,), f"each value: {problem}")
+            checked.append(value)
+        out[key] = checked
+    return out
+
+
+def _check_points(cfg, points) -> list:
+    where = ("sweep", "points")
+    if not isinstance(points, list) or not points or not all(isinstance(p, dict)
+                                                             for p in points):
+        raise cfg.error(where, "expected tables [[sweep.points]] (one a parameter set)")
+    out = []
+    for k, point in enumerate(points):
+        row = {}
+        for key, value in point.items():
+            _known_sweep_key(cfg, where + (k, key), key)
+            checked, problem = _check_value(key, value)
+            if problem:
+                raise cfg.error(where + (k, key), problem)
+            row[key] = checked
+        out.append(row)
+    return out
+
+
+def _known_sweep_key(cfg, where: tuple, key: str) -> None:
+    if key == "species":
+        raise cfg.error(where, "a mixture is given in [[gas.species]], not swept over")
+    if key not in SWEEP_KEYS:
+        raise cfg.error(where, _unknown(key, [k for k in SWEEP_KEYS if k != "species"]))
+
+
+def _sweep_key(dotted: str | None, point: dict, grid: dict, k: int) -> tuple:
+    """The key of a sweep configuration behind an error in a parameter set."""
+    parts = tuple(dotted.split(".")) if dotted else ()
+    name = parts[1] if len(parts) > 1 else None
+    if name in grid:
+        return ("sweep", "grid", name)
+    if name in point:
+        return ("sweep", "points", k, name)
+    return parts
+
+
+def _overrides(params: dict, base: dict) -> str:
+    changed = {k: v for k, v in params.items() if base.get(k, _MISSING) != v}
+    return "{" + ", ".join(f"{k} = {v!r}" for k, v in changed.items()) + "}" if changed \
+        else "of the tables"
+
+
+_MISSING = object()
+
+
+def task_config(parameters: dict, path: str = "<parameters>") -> RunConfig:
+    """Check a sweep's parameter set: a flat dict of the keys of :data:`SWEEP_KEYS`.
+
+    Parameters
+    ----------
+    parameters : dict
+        ``n``, ``packing_fraction`` and ``duration`` are required; every other key
+        takes its default (as in a run configuration).  ``species`` is a list of
+        dicts as the ``[[gas.species]]`` tables.
+    path : str, default "<parameters>"
+        The name to use in messages.
+
+    Returns
+    -------
+    RunConfig
+        With the tables ``gas``, ``run`` and ``output`` filled in with their defaults,
+        and ``model`` (the defaults: an elastic gas) and ``walls`` (none), ready for
+        :func:`build`.
+
+    Raises
+    ------
+    ConfigError
+        For an unknown key, a missing one, or a value of the wrong type or out of
+        range (naming the key as ``table.key``).
+    TypeError
+        If ``parameters`` is not a dict.
+
+    Examples
+    --------
+    >>> cfg = task_config({"n": 100, "packing_fraction": 0.3, "duration": 5})
+    >>> cfg.data["gas"]["start"], cfg.data["run"]["blocks"]
+    ('lattice', 10)
+    """
+    if not isinstance(parameters, dict):
+        raise TypeError(f"a parameter set must be a dict, got {type(parameters).__name__}")
+    cfg = RunConfig({}, "", path)
+    raw: dict = {name: {} for name in _SWEEP_TABLES}
+    for key, value in parameters.items():
+        if key not in SWEEP_KEYS:
+            raise ConfigError(_unknown(key, SWEEP_KEYS), str(key), path=path)
+        raw[SWEEP_KEYS[key]][key] = value
+    for name, schema in _SWEEP_TABLES.items():
+        cfg.data[name] = _check_table(cfg, (name,), raw[name], schema,
+                                      skip=("species",) if name == "gas" else ())
+    _check_species(cfg, raw["gas"])
+    run = cfg.data["run"]
+    if run["equilibrate_collisions"] is not None and "equilibrate" in raw["run"]:
+        raise cfg.error(("run", "equilibrate_collisions"),
+                        "give either equilibrate (a time) or equilibrate_collisions "
+                        "(collisions per disk), not both")
+    cfg.data["model"] = _check_table(cfg, ("model",), {}, _MODEL)
+    cfg.data["model"]["wall_temperatures"] = None
+    cfg.data["walls"] = []
+    return cfg
+
+
 # ------------------------------------------------------------------ building
 # Keyword of make_gas or Simulation -> the key of the configuration it comes from.
 _ARGUMENT_KEYS = {
@@ -452,15 +735,16 @@ def build(cfg: RunConfig, seed: int):
 
     Without wall segments or a mixture of masses this is
     ``edmd2d.make_gas(n, packing_fraction, ..., seed=seed)`` with the ``[model]``
-    keywords.  A mixture's species are laid on the lattice at random (species of
-    equal radius told apart by a further random draw) and, if their masses differ,
+    keywords (``edmd2d.random_gas`` with ``start = "random"``).  A mixture's species
+    are laid on the lattice at random (species of equal radius told apart by a further
+    random draw) and, if their masses differ,
     their velocities are drawn for their masses; disks that a wall segment crosses are
     left out.
 
     Parameters
     ----------
     cfg : RunConfig
-    seed : int
+    seed : int or numpy.random.SeedSequence
         The seed of all random numbers (``[model] seed``, or one drawn by the caller).
 
     Returns
@@ -476,7 +760,7 @@ def build(cfg: RunConfig, seed: int):
         and line it comes from).
     """
     from . import builders
-    from .builders import make_gas
+    from .builders import make_gas, random_gas
     from .geometry import Wall
     from .simulation import Simulation
 
@@ -492,9 +776,10 @@ def build(cfg: RunConfig, seed: int):
             masses = float(species_masses[0]) if (species_masses == species_masses[0]).all() \
                 else 1.0
             radius = 0.5
-        start = make_gas(gas["n"], gas["packing_fraction"], radius=radius, radii=radii,
-                         masses=masses, aspect=gas["aspect"], periodic=_box_kind(gas),
-                         temperature=gas["temperature"], seed=rng)
+        start = (random_gas if gas["start"] == "random" else make_gas)(
+            gas["n"], gas["packing_fraction"], radius=radius, radii=radii, masses=masses,
+            aspect=gas["aspect"], periodic=_box_kind(gas), temperature=gas["temperature"],
+            seed=rng)
         pos, vel, rad, mass = (start.positions, start.velocities, start.radii,
                                start.masses.copy())
         labels = None

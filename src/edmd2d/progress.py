@@ -11,7 +11,7 @@ from __future__ import annotations
 __all__ = ["bar"]
 
 
-def bar(progress, *, total, unit: str, desc: str):
+def bar(progress, *, total, unit: str, desc: str, unit_scale: bool = True):
     """The bar a call with ``progress`` should update.
 
     Parameters
@@ -25,6 +25,9 @@ def bar(progress, *, total, unit: str, desc: str):
         The unit of a new bar (``"frame"``, ``"t"``, ...).
     desc : str
         The label of a new bar.
+    unit_scale : bool, default True
+        Show the counts of a new bar with SI prefixes (``12.3k``) and decimals; off
+        for counts of whole things (tasks).
 
     Returns
     -------
@@ -45,7 +48,7 @@ def bar(progress, *, total, unit: str, desc: str):
         from tqdm.auto import tqdm
 
         return tqdm(total=total, unit=unit, desc=desc, dynamic_ncols=True,
-                    unit_scale=True, leave=True), True
+                    unit_scale=unit_scale, leave=True), True
     if hasattr(progress, "update"):
         return progress, False
     raise TypeError(f"progress must be True, False or a tqdm bar, got {progress!r}")

@@ -134,3 +134,22 @@ def test_sedimentation_follows_the_barometric_law_with_its_virial_correction(tmp
         4.0 * result["mean_err"] + 0.002)
     text = capsys.readouterr().out
     assert "decay length" in text and "wrote" in text
+
+
+def test_melting_example_runs_a_small_sweep_and_resumes(tmp_path, capsys):
+    """The melting example end to end on a tiny system (serial sweep): its table, its
+    figure, and a second call that reuses every finished point."""
+    module = load("hard_disk_melting")
+    module.NS, module.ETAS = (256,), (0.70, 0.712)
+    module.EQUILIBRATE, module.MEASURE, module.BLOCKS = 400.0, 1000.0, 5
+    out = tmp_path / "melt.png"
+    rows = module.main(out, tmp_path / "sweep", scheduler="serial")
+    assert out.stat().st_size > 10_000
+    assert [r["packing_fraction"] for r in rows] == [0.70, 0.712]
+    for r in rows:
+        assert r["pressure"] == pytest.approx(r["Z"] * 4 * r["packing_fraction"] / math.pi)
+        assert 0.0 < r["pressure_error"] < 0.5 and 0.0 <= r["psi6"] <= 1.0
+        assert r["collisions_per_disk"] >= 1400
+    again = module.main(out, tmp_path / "sweep", scheduler="serial")
+    assert again == rows  # (read back from the sweep, not run again)
+    assert "wrote" in capsys.readouterr().out

@@ -281,14 +281,18 @@ def load(path) -> RunConfig:
         For a file that cannot be read, is not valid TOML, or whose keys or values are
         wrong (naming the key and its line).
     """
+    return loads(*_read(path))
+
+
+def _read(path) -> tuple[str, str]:
+    """The text of the file ``path`` and its name, or a ConfigError saying why not."""
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        return path.read_text(encoding="utf-8"), str(path)
     except FileNotFoundError:
         raise ConfigError("no such file", path=str(path)) from None
     except (OSError, UnicodeDecodeError) as exc:
         raise ConfigError(f"cannot be read ({exc})", path=str(path)) from None
-    return loads(text, str(path))
 
 
 def loads(text: str, path: str = "<config>") -> RunConfig:
@@ -511,14 +515,7 @@ def load_sweep(path) -> RunConfig:
         key, a value of the wrong type or out of range, or a parameter set that
         cannot be used (naming the key and its line).
     """
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise ConfigError("no such file", path=str(path)) from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ConfigError(f"cannot be read ({exc})", path=str(path)) from None
-    return loads_sweep(text, str(path))
+    return loads_sweep(*_read(path))
 
 
 def loads_sweep(text: str, path: str = "<config>") -> RunConfig:

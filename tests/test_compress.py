@@ -271,3 +271,37 @@ def test_collisions_that_cannot_come_before_the_disk_fills_the_box():
         sim.advance(collisions=1)
     assert sim.time == pytest.approx(3.0, rel=1e-6)  # diameter 1 (1 + t) = 4
     assert sim.counts.collisions == 0
+
+
+@pytest.mark.parametrize("case", ["pair", "segment end", "segment side"])
+def test_touching_by_rounding_and_parting_at_the_growth_speed_is_resolved(case):
+    """Bodies that overlap by rounding and part exactly as fast as the growth closes
+    the gap: the prediction (contact now) and the response (the gap still closes, by
+    the same arithmetic) agree, the contact pushes them apart, and the run goes on
+    (a response that found the pair not closing would exchange nothing and meet the
+    same contact again at once, without end)."""
+    if case == "pair":
+        sim = ed.Simulation([[3.0, 5.0], [4.0 - 1e-12, 5.0]], [[-0.5, 0.0], [0.5, 0.0]],
+                            0.5, box=ed.Box(10.0, 10.0), growth=1.0)
+    else:
+        at, v = (([5.0, 1.5 + 1e-12], [0.0, -0.5]) if case == "segment end"
+                 else ([5.5 - 1e-12, 5.0], [0.5, 0.0]))
+        sim = ed.Simulation([at], [v], 0.5, box=ed.Box(10.0, 10.0, periodic=False),
+                            walls=[ed.Wall((5.0, 2.0), (5.0, 8.0))], growth=1.0)
+    v0 = sim.velocities
+    sim.advance(until=0.5)
+    assert sim.time == 0.5
+    assert sim.counts.events < 100
+    if case != "segment side":  # (a side's gap is linear: it stays as it is, unmet)
+        assert not np.array_equal(sim.velocities, v0)
+    assert len(overlaps(sim, tol=1e-9)) == 0
+
+
+def test_the_interval_the_target_cuts_short_joins_the_one_before():
+    """No Z of the record comes from a handful of collisions: the last interval, cut
+    short by the target, is merged into the one before it (each interval then holds
+    at least half of rescale_every N collisions)."""
+    result = ed.compress(ed.random_gas(200, 0.3, seed=9), 0.5, rate=1e-2)
+    steps = np.diff(np.concatenate([[0], result.collisions]))
+    assert steps.min() >= 200 and steps[:-1].max() == 400
+    assert np.all(np.diff(result.times) > 0)

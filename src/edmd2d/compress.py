@@ -40,11 +40,13 @@ import numpy as np
 from . import progress as _progress
 from ._validate import as_positive_float
 from .measurements import container_area, kinetic_temperature
+from .theory import ETA_CLOSE_PACKED
 
 __all__ = ["compress", "Compression", "packing_fraction", "CLOSE_PACKING"]
 
-#: The densest packing of equal disks, the triangular lattice: ``pi / (2 sqrt 3)``.
-CLOSE_PACKING = math.pi / (2.0 * math.sqrt(3.0))
+#: The densest packing of equal disks, the triangular lattice: ``pi / (2 sqrt 3)``
+#: (:data:`edmd2d.theory.ETA_CLOSE_PACKED`).
+CLOSE_PACKING = ETA_CLOSE_PACKED
 
 
 def packing_fraction(sim) -> float:
@@ -131,8 +133,9 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
     it jams.
 
     Every radius grows at a constant speed proportional to its value at the start
-    (a mixture keeps its size ratios).  After every ``rescale_every`` collisions per
-    disk the velocities are rescaled to ``temperature`` about the centre of mass
+    (a mixture keeps its size ratios).  After every ``rescale_every`` times N
+    collisions (N disks) the velocities are rescaled to ``temperature`` about the
+    centre of mass
     (whose velocity is set to zero at the start), and the reduced pressure of the
     interval is recorded: ``Z = 1 + W / (2 N kT t)``, with ``W`` the collision virial
     (the sum of impulse times contact distance) over the interval of length ``t``,
@@ -162,7 +165,8 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
     temperature : float, optional
         The ``kT`` to keep, > 0.  Default: the system's kinetic temperature.
     rescale_every : float, default 2.0
-        Collisions per disk between rescalings (and records), > 0.
+        Disk-disk collisions between rescalings (and records), in units of the number
+        of disks, > 0 (each disk takes part in twice as many on average).
     progress : bool or tqdm bar, default False
         ``True`` shows a progress bar of the packing fraction (with ``Z``).
 
@@ -209,8 +213,8 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
     kt = kinetic_temperature(system) if temperature is None else as_positive_float(
         "temperature", temperature)
     if not kt > 0.0:
-        raise ValueError("the disks are at rest (kT = 0): give them a temperature, or "
-                         "pass temperature=")
+        raise ValueError("the disks are at rest (kT = 0): give them velocities first "
+                         "(e.g. with set_velocities), which compress() then rescales")
     radii = system.radii
     phi0 = packing_fraction(system)
     if target is not None:
@@ -236,16 +240,26 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
     bar, owned = _progress.bar(progress, total=round((target or CLOSE_PACKING) - phi0, 6),
                                unit="phi", desc="compress")
     reached = "jammed"
+    sums = (0.0, 0.0)  # the previous interval's virial and integral of kT over time
     try:
         while True:
             t_a = sim.time
             w_a = sim._accumulators()["virial"]
+            c_a = sim.counts.collisions
             sim.advance(until=t_end, collisions=step)
             kt_b = kinetic_temperature(sim)
-            duration = sim.time - t_a
+            # Z = 1 + W / (2 N int kT dt), kT taken as linear over the interval.
             virial = sim._accumulators()["virial"] - w_a
-            z = (1.0 + virial / (2.0 * n * 0.5 * (kt + kt_b) * duration) if duration > 0.0
-                 else math.inf)
+            kt_time = 0.5 * (kt + kt_b) * (sim.time - t_a)
+            if sim.counts.collisions - c_a < step // 2 and record["z"]:
+                # The interval the target cut short joins the one before it, so that
+                # no Z comes from a handful of collisions.
+                virial += sums[0]
+                kt_time += sums[1]
+                for values in record.values():
+                    values.pop()
+            sums = (virial, kt_time)
+            z = 1.0 + virial / (2.0 * n * kt_time) if kt_time > 0.0 else math.inf
             phi = phi0 * (1.0 + growth * (sim.time - t_start)) ** 2
             for key, value in zip(record, (sim.time, phi, z, kt_b,
                                            sim.counts.collisions - c_start)):
@@ -291,7 +305,7 @@ def _check_target(sim, target: float, phi0: float, radii: np.ndarray) -> None:
     if target >= 1.0:
         raise ValueError(f"target {target} must be below 1 (disks cannot cover the area)")
     largest = 2.0 * float(radii.max()) * math.sqrt(target / phi0)
-    room = min(sim.box.width, sim.box.height)
+    room = sim._outgrow_diameter()  # (where the engine stops a growing disk)
     if largest >= room:
         raise ValueError(f"at packing fraction {target} the largest disk would be "
                          f"{largest:.6g} wide, as wide as the box ({room:.6g}): use more "

@@ -941,7 +941,12 @@ class ReferenceSimulation:
             if self.growth is not None:
                 # The gap closes at dd - vn: the rate the collision reverses (vn' - dd =
                 # dd - vn); rounding may leave a contact not closing: nothing changes.
-                vn = min(vn - (self.dr[i] + self.dr[j]), 0.0)
+                # (Closing as the contact time's quadratic has it, d.dv < s ds with s
+                # the contact distance: the same test, also for a pair that rounding
+                # left overlapping.)
+                dv = (v[0] - self.v[j][0], v[1] - self.v[j][1])
+                s = self.r[i] + self.r[j]
+                vn = min((_dot(d, dv) - s * (self.dr[i] + self.dr[j])) / norm, 0.0)
             e = self._pair_restitution(i, j)
             # Impulse along n: v_i' = v_i - (1+e) m_j/(m_i+m_j) vn n, and the opposite
             # for j, so that vn becomes -e vn.  For e = 1, 1 + e is exactly 2.0: the
@@ -1026,10 +1031,13 @@ class ReferenceSimulation:
             if self.growth is not None:
                 # (n points to the disk's side for an end point; for a side, the sign
                 # of n drops out of vn n, but not of the growth term.)
-                if part == "side" and _dot(n, (p[0] - a[0], p[1] - a[1])) < 0.0:
-                    n = (-n[0], -n[1])
-                    vn = -vn
-                vn = min(vn - self.dr[i], 0.0)
+                if part == "side":
+                    if _dot(n, (p[0] - a[0], p[1] - a[1])) < 0.0:
+                        n = (-n[0], -n[1])
+                        vn = -vn
+                    vn = min(vn - self.dr[i], 0.0)
+                else:  # (as for a pair: the end point's separation times dv, less r dr)
+                    vn = min((vn * norm - self.r[i] * self.dr[i]) / norm, 0.0)
             k = 1.0 + e  # exactly 2.0 for e = 1, as in the elastic reflection
             self.v[i] = [v[0] - k * vn * n[0], v[1] - k * vn * n[1]]
             self._release(i)

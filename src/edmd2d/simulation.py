@@ -325,7 +325,7 @@ class Simulation:
         queue are not touched: predict every disk afresh after a rebuild.
 
         Under growth the grid holds until the largest diameter reaches ``dmax``
-        (:meth:`_grid_limit`)."""
+        (:meth:`_time_of_diameter` of it)."""
         self._grid_dmax = float(dmax)
         width, height = self._box.width, self._box.height
         side_min = dmax * (1.0 + _CELL_MARGIN)
@@ -370,7 +370,7 @@ class Simulation:
         """Under growth, the time at which the largest diameter reaches ``diameter``."""
         rate, t0 = float(self._growth[0]), float(self._growth[1])
         d0 = 2.0 * float(self._S[:, _layout.R].max())
-        return t0 + (diameter / d0 - 1.0) / rate if rate > 0.0 else math.inf
+        return t0 + (diameter / d0 - 1.0) / rate  # (rate > 0: see _as_growth)
 
     def _regrid(self) -> None:
         """Under growth, once the largest diameter has reached the one the grid was
@@ -1287,8 +1287,10 @@ class Simulation:
         # The constructor's checks, on a throwaway simulation of the same disks: it
         # refuses what the constructor refuses, and nothing of self changes until
         # they have passed.
+        # (Any grid serves the checks: the default one, also when the disks have grown
+        # past a cell_size given at construction.)
         Simulation(pos, self.velocities, self.radii, self.masses, box=self._box,
-                   walls=self._walls, time=self._time, cell_size=self._cell_size)
+                   walls=self._walls, time=self._time)
         pos = self._check_in_box(pos, self.radii)  # (x = width becomes 0 if periodic)
         rest = self._resting(pos, self.velocities, self.radii, self.masses, self._model)
         self._sync_all()

@@ -128,6 +128,16 @@ def exit_time(x, vx, c, side, ncell, periodic):
 
 
 @njit
+def growth_factor(t, growth):
+    """Under growth ``(rate, t0)``: the factor ``1 + rate (t - t0)`` by which every
+    radius at ``t`` exceeds its stored value ``S[i, R]`` (the radius at ``t0``); each
+    radius grows at the speed ``rate S[i, R]``.  1 without growth."""
+    if growth is None:
+        return 1.0
+    return 1.0 + growth[0] * (t - growth[1])
+
+
+@njit
 def pair_time_grow(dx, dy, dvx, dvy, d, dd):
     """Time until two circles with separation ``(dx, dy)`` and relative velocity
     ``(dvx, dvy)`` come to the distance ``d + dd t`` that grows at the speed ``dd >= 0``

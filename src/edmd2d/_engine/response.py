@@ -65,6 +65,7 @@ from .layout import (
     unpack_segment,
     unpack_shift,
 )
+from .predict import _segment_frame, growth_factor
 
 # Two collisions of a disk count as simultaneous when their times differ by at most
 # this fraction of the time: a few units of rounding (a collapse drives the intervals
@@ -236,7 +237,7 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight, growth):
     dd = dx * dx + dy * dy
     s = (S[i, VX] - S[j, VX]) * dx + (S[i, VY] - S[j, VY]) * dy
     if growth is not None:
-        s -= (S[i, R] + S[j, R]) * growth[0] * math.sqrt(dd)  # (s = |d| vn: less |d| dd)
+        s = _closing_pair(i, j, t, s, S, growth)
     if s < 0.0:
         wi = invm[i]
         wj = invm[j]
@@ -254,6 +255,41 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight, growth):
     if flight is not None:
         _release(i, S, flight[3])
         _release(j, S, flight[3])
+
+
+@njit
+def _closing_pair(i, j, t, s, S, growth):
+    """Under growth: ``s = dv.d`` of a pair less ``d(t) dd``, with ``d(t)`` its contact
+    distance and ``dd`` that distance's growth speed: negative while the gap closes.
+    The arithmetic of the prediction's ``b`` (``predict.pair_time_grow``), so that
+    the two never disagree on whether a pair touching by rounding still closes (a
+    contact predicted now that the response found not closing would come again at
+    once, without end)."""
+    rr = S[i, R] + S[j, R]
+    return s - (rr * growth_factor(t, growth)) * (rr * growth[0])
+
+
+@njit
+def _closing_wall(i, t, box, end, vn, nx, ny, nn, S, wa, wb, partner, aux, gf, growth):
+    """Under growth, the closing rate of disk ``i`` on a wall in the prediction's
+    arithmetic (see :func:`_closing_pair`), and the normal to reflect it along:
+    ``(vn, nx, ny, nn)``.  A box wall (unit normal): ``vn - dr``; an end point (``n``
+    the separation): ``n.v - r(t) dr``; a segment's side: the unit normal and normal
+    velocity of ``predict._segment_frame``, towards the disk's side, less ``dr``."""
+    dr = S[i, R] * growth[0]
+    if box:
+        return vn - dr, nx, ny, nn
+    if end:
+        return vn - (S[i, R] * growth_factor(t, growth)) * dr, nx, ny, nn
+    sx, sy = unpack_shift(unpack_segment(aux)[1])
+    ax = wa[partner, 0] + sx * gf[0]
+    ay = wa[partner, 1] + sy * gf[1]
+    _, _, _, unx, uny, h, w = _segment_frame(S[i, X], S[i, Y], S[i, VX], S[i, VY], ax, ay,
+                                             wb[partner, 0] + sx * gf[0],
+                                             wb[partner, 1] + sy * gf[1])
+    if h >= 0.0:
+        return w - dr, unx, uny, 1.0
+    return -w - dr, -unx, -uny, 1.0
 
 
 @njit
@@ -392,7 +428,8 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model
     # send the disk back with a velocity drawn afresh.
     vn = S[i, VX] * nx + S[i, VY] * ny  # (|n| times the normal velocity)
     if growth is not None:
-        vn -= S[i, R] * growth[0] * math.sqrt(nn)
+        vn, nx, ny, nn = _closing_wall(i, t, kind == BOX, col == W_ENDS, vn, nx, ny, nn, S,
+                                       wa, wb, partner, aux, gf, growth)
     heated = False
     if model is not None:
         heated = model[7][aux if kind == BOX else 4 + partner] > 0.0

@@ -46,6 +46,7 @@ from .predict import (
     box_wall_time_grow,
     exit_time,
     exit_time_accel,
+    growth_factor,
     pair_time,
     pair_time_grow,
     point_time,
@@ -53,16 +54,6 @@ from .predict import (
     segment_time_accel,
     segment_time_grow,
 )
-
-
-@njit
-def growth_factor(t, growth):
-    """Under growth ``(rate, t0)``: the factor ``1 + rate (t - t0)`` by which every
-    radius at ``t`` exceeds its stored value ``S[i, R]`` (the radius at ``t0``); each
-    radius grows at the speed ``rate S[i, R]``.  1 without growth."""
-    if growth is None:
-        return 1.0
-    return 1.0 + growth[0] * (t - growth[1])
 
 
 @njit

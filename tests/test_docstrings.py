@@ -22,7 +22,6 @@ import dataclasses
 import importlib
 import importlib.util
 import inspect
-import pkgutil
 import textwrap
 import warnings
 
@@ -30,29 +29,13 @@ import pytest
 from numpydoc.docscrape import NumpyDocString  # (numpydoc: in the test extra)
 
 import edmd2d
+from edmd2d._api import public_modules, public_names
 
 # Docstrings that fail the rules, in files whose owners are changing them; each entry
 # makes its test an expected failure (strict: a test that starts passing fails, so that
 # the entry is removed).
 KNOWN_FAILURES: dict[str, str] = {
 }
-
-
-def public_modules(package: str = "edmd2d") -> list[str]:
-    root = importlib.import_module(package)
-    names = [package]
-    for info in pkgutil.walk_packages(root.__path__, prefix=package + "."):
-        if not any(part.startswith("_") for part in info.name.split(".")):
-            names.append(info.name)
-    return sorted(names)
-
-
-def public_names(module) -> list[str]:
-    if hasattr(module, "__all__"):
-        return list(module.__all__)
-    return [name for name, obj in vars(module).items()
-            if not name.startswith("_") and (inspect.isfunction(obj) or inspect.isclass(obj))
-            and obj.__module__ == module.__name__]
 
 
 def public_objects() -> dict[str, tuple[object, str]]:

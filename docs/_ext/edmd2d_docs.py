@@ -47,7 +47,6 @@ import importlib
 import inspect
 import io
 import os
-import pkgutil
 import re
 import runpy
 import shlex
@@ -61,6 +60,8 @@ from docutils.parsers.rst import directives
 from docutils.statemachine import StringList
 from sphinx.util import logging
 from sphinx.util.docutils import SphinxDirective
+
+from edmd2d._api import public_modules, public_names
 
 logger = logging.getLogger(__name__)
 
@@ -283,25 +284,6 @@ def _report_seconds(app, doctree) -> None:
 
 
 # ------------------------------------------------------ references and the API coverage
-def public_modules(package: str = "edmd2d") -> list[str]:
-    """Every module of ``package`` whose dotted name has no part starting with ``_``."""
-    root = importlib.import_module(package)
-    names = [package]
-    for info in pkgutil.walk_packages(root.__path__, prefix=package + "."):
-        if not any(part.startswith("_") for part in info.name.split(".")):
-            names.append(info.name)
-    return sorted(names)
-
-
-def public_names(module) -> list[str]:
-    """The module's ``__all__``, or else its own public functions and classes."""
-    if hasattr(module, "__all__"):
-        return list(module.__all__)
-    return [name for name, obj in vars(module).items()
-            if not name.startswith("_") and (inspect.isfunction(obj) or inspect.isclass(obj))
-            and obj.__module__ == module.__name__]
-
-
 def canonical_name(module, name: str) -> str:
     """Where the documentation of ``module.name`` lives: its defining module."""
     obj = getattr(module, name)

@@ -565,3 +565,19 @@ def test_bad_simulation_and_save_targets(tmp_path):
     with pytest.raises(TypeError, match="progress"):
         viz.save(anim, tmp_path / "x.gif", progress="yes")
     anim._draw_was_started = True
+
+
+def test_a_growing_simulation_is_drawn_at_its_present_size():
+    """The picture follows the radii of growing disks from frame to frame."""
+    from edmd2d.viz import _Scene
+
+    sim = ed.random_gas(50, 0.3, seed=1)
+    sim.set_growth(0.1)
+    scene = _Scene(sim)
+    scene.update()
+    before = np.array(scene.disks.get_widths())
+    sim.advance(until=2.0)
+    scene.update()
+    after = np.array(scene.disks.get_widths())
+    assert after.max() == pytest.approx(before.max() * 1.2, rel=1e-9)
+    plt.close(scene.ax.figure)

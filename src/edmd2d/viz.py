@@ -925,9 +925,8 @@ class _Scene:
         box = sim.box
         self._size = box.size
         self._periodic = box.periodic
-        self._diam = 2.0 * sim.radii
-        self._rad = sim.radii
-        n = len(self._diam)
+        diameters = 2.0 * sim.radii
+        n = len(diameters)
         # Validate all colour options before any figure is made.
         self._color = _ColorScheme(sim, color_by, cmap, vmin, vmax, color)
         if linewidth is None:
@@ -963,7 +962,7 @@ class _Scene:
         clip = TransformedBbox(Bbox([[0.0, 0.0], [w, h]]), ax.transData)
 
         self.disks = EllipseCollection(
-            self._diam, self._diam, 0.0, units="xy", offsets=np.zeros((n, 2)),
+            diameters, diameters, 0.0, units="xy", offsets=np.zeros((n, 2)),
             offset_transform=ax.transData, edgecolors=edgecolor, linewidths=linewidth,
             zorder=2,
         )
@@ -1026,9 +1025,10 @@ class _Scene:
         """Show the simulation's current state; returns the artists that changed."""
         sim = self.sim
         pos = sim.positions
-        idx, offsets = _with_periodic_images(pos, self._rad, self._size, self._periodic)
+        rad = sim.radii  # (read afresh: growing disks change size)
+        idx, offsets = _with_periodic_images(pos, rad, self._size, self._periodic)
         self.disks.set_offsets(offsets)
-        diam = self._diam[idx]
+        diam = 2.0 * rad[idx]
         self.disks.set_widths(diam)
         self.disks.set_heights(diam)
         self._color.apply(self.disks, sim, idx)

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from ._engine.grid import neighbour
 from ._jit import njit
 
 __all__ = ["DONE", "NEED_RANDOM", "STALLED", "place_disks"]
@@ -85,19 +86,13 @@ def _fits(pos, rad, k, x, y, width, height, px, py, contact_scale, head, nxt, nc
     else:
         y0, y1 = cy - 1, cy + 1
     for gy in range(y0, y1 + 1):
-        if py:
-            ry = gy % ncy
-        elif gy < 0 or gy >= ncy:
+        ry, _ = neighbour(0, gy, ncy, py)  # (the grid's own wrap: -1 past a wall)
+        if ry < 0:
             continue
-        else:
-            ry = gy
         for gx in range(x0, x1 + 1):
-            if px:
-                rx = gx % ncx
-            elif gx < 0 or gx >= ncx:
+            rx, _ = neighbour(0, gx, ncx, px)
+            if rx < 0:
                 continue
-            else:
-                rx = gx
             j = head[rx + ncx * ry]
             while j >= 0:
                 dx = pos[j, 0] - x

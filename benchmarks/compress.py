@@ -33,15 +33,9 @@ import statistics
 import time
 
 import numpy as np
+from timing import collision_rate as rate
 
 import edmd2d as ed
-
-
-def rate(sim, collisions: int) -> float:
-    c0 = sim.counts.collisions
-    t0 = time.process_time()
-    sim.advance(collisions=collisions)
-    return (sim.counts.collisions - c0) / (time.process_time() - t0)
 
 
 def growing_rates(n: int, reps: int, k: float) -> dict:

@@ -22,16 +22,10 @@ from __future__ import annotations
 
 import argparse
 import statistics
-import time
+
+from timing import collision_rate as rate
 
 import edmd2d as ed
-
-
-def rate(sim, collisions: int) -> float:
-    c0 = sim.counts.collisions
-    t0 = time.process_time()
-    sim.advance(collisions=collisions)
-    return (sim.counts.collisions - c0) / (time.process_time() - t0)
 
 
 def main() -> None:

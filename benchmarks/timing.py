@@ -47,6 +47,15 @@ def count_delta(before, after) -> dict:
     return {name: getattr(after, name) - getattr(before, name) for name in names}
 
 
+def collision_rate(sim, collisions: int) -> float:
+    """Collisions per second of process CPU time of ``sim.advance(collisions=...)``
+    (CPU time: another process on the machine does not count against the run)."""
+    c0 = sim.counts.collisions
+    t0 = time.process_time()
+    sim.advance(collisions=collisions)
+    return (sim.counts.collisions - c0) / (time.process_time() - t0)
+
+
 def time_advance(sim, collisions: int) -> dict:
     """Run ``sim.advance(collisions=collisions)`` once; seconds, counts and physical time."""
     c0, t_phys0 = sim.counts, sim.time

@@ -28,20 +28,34 @@ measurement of 7e4 collisions per disk (about 200 s of one core) to 0.01 (1e-3).
 
 Writes a figure (``.png``): the measured loop with error bars beside the published
 equations of state (Bernard and Krauth 2011 at 256^2 and 1024^2; Li et al., J. Chem.
-Phys. 157, 234111 (2022) at 128^2 in the same box shape, from the data distributed
-with that paper), the order ``|Psi_6|`` against packing fraction, and a snapshot inside
-the coexistence region coloured by the phase of each disk's local ``psi_6`` (hexatic
+Phys. 157, 234111 (2022) at 870 disks and at 128^2 in the same box shape, from the data
+distributed with that paper), the order ``|Psi_6|`` against packing fraction, the
+height of the loop against ``N`` beside the published ones, and a snapshot inside the
+coexistence region coloured by the phase of each disk's local ``psi_6`` (hexatic
 domains share one colour); writes the table of the sweep (``results.csv`` in the
-sweep's directory) and prints it::
+sweep's directory) and prints it with the loop heights::
 
     python examples/hard_disk_melting.py [OUT.png] [--quick | --full] [--n 4096]
+        [--etas 0.704,0.712] [--starts liquid,crystal] [--collisions 7e4]
         [--scheduler serial|tcp://...] [--workers 2] [--sweep DIR]
+    python examples/hard_disk_melting.py OUT.png --plot SWEEP [SWEEP ...]
 
 ``--quick`` (the default): 64^2 disks, six packing fractions, liquid starts, 5e4
-collisions per disk each; about 12 minutes on two cores.  ``--full``: 64^2 and 128^2
+collisions per disk each; about 7 minutes on two cores.  ``--full``: 64^2 and 128^2
 disks, 0.690 to 0.724 in steps of 0.002, liquid and crystal starts, 2e4 + 7e4
-collisions per disk (128^2: hours of one core per point; run it in the background, it
-resumes from its checkpoints when started again).
+collisions per disk (128^2: about half an hour of one core per point; run it in the
+background, it resumes from its checkpoints when started again).  ``--plot`` runs
+nothing: it draws the figure from the finished points of one or more sweeps (several
+system sizes, or a sweep still running) and writes their combined points and loop
+heights to ``OUT.csv``.
+
+The runs at one ``(N, eta)`` (starts, replicas, several sweeps) are combined as a
+weighted mean whose error is widened by the scatter of the runs when they disagree
+(:func:`combine`).  The loop height is the highest combined pressure at ``eta <=
+0.710`` less the lowest one after it at ``eta <= 0.718``, with the two extremes found
+in one half of the measured windows and their pressures read from the other, so that
+the noise does not inflate it (:func:`loop_height`); the published heights come from
+the published curves by the same rule.
 """
 
 from __future__ import annotations
@@ -57,7 +71,8 @@ import edmd2d as ed
 
 # Published equations of state, beta P d^2 (d the diameter) at packing fraction eta,
 # from the data files distributed with Li et al. (2022) (github.com/jellyfysh/
-# HistoricDisks, DigitizedData: "original data provided by the authors").
+# HistoricDisks, DigitizedData: "original data provided by the authors"), in the loop
+# region.
 BERNARD_KRAUTH_2011 = {  # event-chain Monte Carlo, square boxes: {N: {eta: beta P d^2}}
     1024 ** 2: {0.698: 9.16931, 0.700: 9.18545, 0.702: 9.18800, 0.704: 9.18692,
                 0.706: 9.18553, 0.708: 9.18502, 0.710: 9.18425, 0.712: 9.18354,
@@ -69,6 +84,31 @@ BERNARD_KRAUTH_2011 = {  # event-chain Monte Carlo, square boxes: {N: {eta: beta
 LI_2022_128 = {  # massively parallel Monte Carlo, 128^2 disks, box 1 : sqrt(3)/2
     0.698: (9.17441, 0.00057), 0.704: (9.18700, 0.00091), 0.708: (9.17512, 0.00088),
     0.712: (9.16590, 0.00094), 0.716: (9.1560, 0.0018)}
+LI_2022_870 = {  # event-chain Monte Carlo, 870 disks, box 29 : 30 sqrt(3)/2
+    0.690: 8.969476, 0.692: 9.036875, 0.694: 9.08915, 0.696: 9.12293, 0.698: 9.13490,
+    0.700: 9.12956, 0.702: 9.11236, 0.704: 9.09028, 0.706: 9.06621, 0.708: 9.04532,
+    0.710: 9.0272, 0.712: 9.0122, 0.714: 9.0158, 0.716: 9.0450, 0.718: 9.0818}
+LI_2022_224 = {  # event-chain Monte Carlo, 224 disks, square box
+    0.690: 8.83348, 0.692: 8.84651, 0.694: 8.83344, 0.696: 8.7966, 0.698: 8.74504,
+    0.700: 8.6876, 0.702: 8.6436, 0.704: 8.6262, 0.706: 8.6175, 0.708: 8.6305,
+    0.710: 8.6721, 0.712: 8.7378, 0.714: 8.7984, 0.716: 8.8869, 0.718: 8.9570}
+ENGEL_2013_512 = {  # Engel et al. (2013), massively parallel Monte Carlo, 512^2, square
+    0.698: 9.16994, 0.700: 9.18610, 0.702: 9.19002, 0.704: 9.18816, 0.706: 9.186067,
+    0.708: 9.18424, 0.710: 9.182809, 0.712: 9.18116, 0.714: 9.179945, 0.716: 9.18212,
+    0.718: 9.19302, 0.720: 9.2269}
+# The curves from which the loop height against N is drawn, with their source.
+PUBLISHED_LOOPS = {
+    224: (LI_2022_224, "Li et al. 2022"),
+    870: (LI_2022_870, "Li et al. 2022"),
+    128 ** 2: ({eta: p for eta, (p, _) in LI_2022_128.items()}, "Li et al. 2022"),
+    256 ** 2: (BERNARD_KRAUTH_2011[256 ** 2], "Bernard & Krauth 2011"),
+    512 ** 2: (ENGEL_2013_512, "Engel et al. 2013"),
+    1024 ** 2: (BERNARD_KRAUTH_2011[1024 ** 2], "Bernard & Krauth 2011"),
+}
+# Where the loop is looked for: its maximum at eta <= MAX_BELOW (all published maxima
+# lie at 0.692-0.704), its minimum after the maximum at eta <= MIN_BELOW (beyond it the
+# pressure of the hexatic branch rises steeply at every size).
+MAX_BELOW, MIN_BELOW = 0.710, 0.718
 
 NS = (64 ** 2,)
 ETAS = (0.692, 0.698, 0.702, 0.708, 0.714, 0.720)
@@ -138,6 +178,8 @@ def run_sweep(directory: Path, scheduler, workers):
 
 
 def table(result) -> list[dict]:
+    """The finished points of a sweep, one dict each (its parameters, values, task id
+    and directory); failed ones are printed and left out."""
     rows = []
     for task in result.tasks:
         if task["status"] != "ok":
@@ -145,81 +187,273 @@ def table(result) -> list[dict]:
                   f"{task['error']['message']}")
             continue
         rows.append({**task["parameters"], **task["values"], "task": task["task"],
-                     "seconds": task["seconds"]})
+                     "seconds": task["seconds"],
+                     "state": str(result.output / "tasks" / task["task"] / "state.edmd2d")})
     return rows
 
 
-def main(out: Path, directory: Path, scheduler=None, workers=None):
+def _mean(values, errors) -> tuple[float, float]:
+    """The inverse-variance weighted mean and its error, scaled up by ``sqrt(chi^2 /
+    (k - 1))`` when the ``k`` values scatter more than their errors say (the Particle
+    Data Group's scale factor), so that runs which have not yet agreed widen the
+    error instead of hiding in it."""
+    values = np.asarray(values, dtype=float)
+    w = 1.0 / np.asarray(errors, dtype=float) ** 2
+    mean = float((w * values).sum() / w.sum())
+    error = float(1.0 / math.sqrt(w.sum()))
+    if len(values) > 1:
+        chi2 = float((w * (values - mean) ** 2).sum())
+        error *= max(1.0, math.sqrt(chi2 / (len(values) - 1)))
+    return mean, error
+
+
+def combine(rows) -> dict:
+    """The runs at each ``(N, eta)`` (starts and replicas) as one pressure.
+
+    Returns ``{N: [point, ...]}`` sorted by ``eta``, each point a dict: ``eta``,
+    ``pressure`` and ``error`` (:func:`_mean` of the runs), ``runs``, ``psi6`` (their
+    mean) and ``halves``: the same mean of the first and of the second half of every
+    run's measured windows, ``((p, error), (p, error))``.  A run's halves follow from
+    its mean and drift: with ``k`` windows, ``h = k // 2`` in the first half, ``Z =
+    (h A + (k - h) B) / k`` and ``drift = B - A``, and the drift's error splits as
+    the halves' sizes (``drift_error^2 = eA^2 + eB^2``, ``eA^2 / eB^2 = (k - h) / h``).
+    """
+    groups: dict = {}
+    for r in rows:
+        groups.setdefault((r["n"], round(r["packing_fraction"], 6)), []).append(r)
+    out: dict = {}
+    for (n, eta), runs in sorted(groups.items()):
+        scale = 4.0 * eta / math.pi
+        p, e = _mean([r["pressure"] for r in runs], [r["pressure_error"] for r in runs])
+        halves = []
+        for first in (True, False):
+            values, errors = [], []
+            for r in runs:
+                k = int(r["blocks"])
+                h = k // 2
+                share = (k - h) / k if first else h / k  # of the drift, and its error^2
+                values.append(scale * (r["Z"] - r["drift"] * share if first
+                                       else r["Z"] + r["drift"] * share))
+                errors.append(scale * r["drift_error"] * math.sqrt(share))
+            halves.append(_mean(values, errors))
+        halves = tuple(halves)
+        out.setdefault(n, []).append({
+            "eta": eta, "pressure": p, "error": e, "runs": len(runs),
+            "psi6": float(np.mean([r["psi6"] for r in runs])), "halves": halves})
+    return out
+
+
+def _extremes(eta, p) -> tuple[int, int]:
+    """The indices of the loop's maximum, the highest pressure at ``eta <=
+    MAX_BELOW``, and of its minimum, the lowest one after it at ``eta <= MIN_BELOW``."""
+    eta, p = np.asarray(eta), np.asarray(p)
+    top = np.flatnonzero(eta <= MAX_BELOW + 1e-9)
+    i = int(top[np.argmax(p[top])])
+    after = np.flatnonzero((eta >= eta[i]) & (eta <= MIN_BELOW + 1e-9))
+    return i, int(after[np.argmin(p[after])])
+
+
+def _split_height(eta, first, second) -> float:
+    """The extremes found in one half of the data, their pressures read from the
+    other half, and the two ways round averaged."""
+    i, j = _extremes(eta, first)
+    k, m = _extremes(eta, second)
+    return 0.5 * ((second[i] - second[j]) + (first[k] - first[m]))
+
+
+def loop_height(points, samples: int = 4000, seed: int = 0) -> dict:
+    """The height of the loop, from :func:`combine`'s points of one system size.
+
+    The highest pressure less the lowest one after it (``raw``) is biased upwards by
+    the noise: the largest of several noisy values near a flat maximum lies above the
+    maximum, the smallest below the minimum (by about 2.4 errors for five points at
+    each).  So the extremes are found in the first half of the measured windows and
+    their pressures read from the second half, and the other way round, and the two
+    averaged (``height``): the noise that picks a point no longer sets its value.  The
+    error is the spread of that estimate over ``samples`` redrawings of both halves
+    from normal distributions of their means and errors; redrawn around noisy values,
+    the extremes are found less surely than in the data, so the error is somewhat
+    conservative (by about 20 % for the flat loop of the test).  ``bounded`` says the
+    minimum of the combined curve is its last point (the loop may go on lower).
+    """
+    eta = np.array([q["eta"] for q in points])
+    p = np.array([q["pressure"] for q in points])
+    (a, ea), (b, eb) = (np.array([q["halves"][h] for q in points]).T for h in (0, 1))
+    i, j = _extremes(eta, p)
+    rng = np.random.default_rng(seed)
+    draws = [_split_height(eta, a + ea * rng.standard_normal(len(a)),
+                           b + eb * rng.standard_normal(len(b))) for _ in range(samples)]
+    return {"height": _split_height(eta, a, b), "error": float(np.std(draws, ddof=1)),
+            "raw": float(p[i] - p[j]), "eta_max": float(eta[i]), "eta_min": float(eta[j]),
+            "bounded": bool(j == len(eta) - 1)}
+
+
+def published_heights() -> list[tuple[int, float, bool, str]]:
+    """``(N, height, bounded, source)`` of the published curves (their errors, 1e-4 to
+    2e-3, are far below ours, so their heights are taken as they are)."""
+    out = []
+    for n, (curve, source) in PUBLISHED_LOOPS.items():
+        eta = np.array(sorted(curve))
+        i, j = _extremes(eta, [curve[e] for e in eta])
+        out.append((n, curve[eta[i]] - curve[eta[j]], bool(j == len(eta) - 1), source))
+    return out
+
+
+def report(rows) -> dict:
+    """Prints the runs, the combined points and the loop heights; returns the latter
+    two (``{N: {"points": ..., "loop": ...}}``)."""
+    print(f"  {'N':>6} {'eta':>6} {'start':>8} {'beta P d^2':>18} {'|Psi_6|':>7} "
+          f"{'drift of Z':>16} {'coll/disk':>9} {'s':>6}")
+    for r in sorted(rows, key=lambda r: (r["n"], r["packing_fraction"], r["start"])):
+        print(f"  {r['n']:6d} {r['packing_fraction']:6.3f} {r['start']:>8} "
+              f"{r['pressure']:9.4f} +- {r['pressure_error']:.4f} {r['psi6']:7.3f} "
+              f"{r['drift']:+8.4f} +- {r['drift_error']:.4f} "
+              f"{r['collisions_per_disk']:9.0f} {r['seconds']:6.0f}")
+    summary = {}
+    for n, points in combine(rows).items():
+        loop = loop_height(points) if len(points) >= 3 else None
+        summary[n] = {"points": points, "loop": loop}
+        if loop is not None:
+            print(f"  N = {n}: loop height {loop['height']:.4f} +- {loop['error']:.4f} "
+                  f"(maximum at {loop['eta_max']:.3f}, minimum at {loop['eta_min']:.3f}"
+                  f"{', or beyond' if loop['bounded'] else ''}; highest less lowest "
+                  f"point {loop['raw']:.4f})")
+    for n, height, bounded, source in published_heights():
+        print(f"  published, N = {n}: loop height {height:.4f}"
+              f"{' or more' if bounded else ''} ({source})")
+    return summary
+
+
+def figure(rows, out: Path) -> dict:
+    """The figure of the module notes from the rows of one or more sweeps; returns
+    :func:`report`'s summary."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    result = run_sweep(directory, scheduler, workers)
-    rows = table(result)
-    print(f"  {'N':>6} {'eta':>6} {'start':>8} {'beta P d^2':>18} {'|Psi_6|':>7} "
-          f"{'drift of Z':>16} {'coll/disk':>9} {'s':>6}")
-    for r in rows:
-        print(f"  {r['n']:6d} {r['packing_fraction']:6.3f} {r['start']:>8} "
-              f"{r['pressure']:9.4f} +- {r['pressure_error']:.4f} {r['psi6']:7.3f} "
-              f"{r['drift']:+8.4f} +- {r['drift_error']:.4f} "
-              f"{r['collisions_per_disk']:9.0f} {r['seconds']:6.0f}")
-
-    fig, (ax, ax_psi, ax_snap) = plt.subplots(1, 3, figsize=(16, 5.2),
-                                              gridspec_kw={"width_ratios": [1.3, 1, 1]})
+    summary = report(rows)
+    fig, axes = plt.subplots(2, 2, figsize=(13, 10.5))
+    (ax, ax_psi), (ax_h, ax_snap) = axes
     for (n, data), style in zip(BERNARD_KRAUTH_2011.items(), ("C7-", "C7--")):
         ax.plot(list(data), list(data.values()), style, lw=1,
                 label=f"Bernard & Krauth 2011, N = {int(math.isqrt(n))}$^2$")
+    ax.plot(list(LI_2022_870), list(LI_2022_870.values()), "C7:", lw=1,
+            label="Li et al. 2022, N = 870")
     eta_li, p_li = zip(*LI_2022_128.items())
     ax.errorbar(eta_li, [p for p, _ in p_li], [e for _, e in p_li], fmt="s", ms=4,
                 color="C2", mfc="none", label="Li et al. 2022, N = 128$^2$")
-    for k, n in enumerate(sorted({r["n"] for r in rows})):
+    sizes = sorted({r["n"] for r in rows})
+    for k, n in enumerate(sizes):
         for kind, marker in (("liquid", "o"), ("crystal", "^")):
             sel = sorted((r for r in rows if r["n"] == n and r["start"] == kind),
                          key=lambda r: r["packing_fraction"])
             if not sel:
                 continue
             ax.errorbar([r["packing_fraction"] for r in sel], [r["pressure"] for r in sel],
-                        [r["pressure_error"] for r in sel], fmt=marker + "-", ms=5,
-                        color=_color(k, kind), capsize=2,
-                        label=f"edmd2d, N = {int(math.isqrt(n))}$^2$, {kind} start")
+                        [r["pressure_error"] for r in sel], fmt=marker, ms=4,
+                        color=_color(k), mfc="none" if kind == "crystal" else None,
+                        capsize=2, alpha=0.6)
             ax_psi.errorbar([r["packing_fraction"] for r in sel], [r["psi6"] for r in sel],
-                            [r["psi6_error"] for r in sel], fmt=marker + "-", ms=5,
-                            color=_color(k, kind), capsize=2)
+                            [r["psi6_error"] for r in sel], fmt=marker, ms=4,
+                            color=_color(k), mfc="none" if kind == "crystal" else None,
+                            capsize=2, label=f"N = {_size(n)}, {kind} start")
+        points = summary[n]["points"]
+        ax.errorbar([q["eta"] for q in points], [q["pressure"] for q in points],
+                    [q["error"] for q in points], fmt="-", lw=1.5, color=_color(k), capsize=3,
+                    label=f"edmd2d, N = {_size(n)} (o liquid, ^ crystal start; line: "
+                    "combined)")
     for a in (ax, ax_psi):
         a.axvspan(0.700, 0.716, color="0.92", zorder=0)
         a.set_xlabel(r"packing fraction $\eta$")
+    ax.set_xlim(0.688, 0.724)
+    ax.set_ylim(8.95, 9.32)
     ax.set_ylabel(r"$\beta P d^2$")
-    ax.legend(frameon=False, fontsize=7)
+    ax.legend(frameon=False, fontsize=7, loc="upper left")
     ax_psi.set_ylabel(r"$|\Psi_6|$")
     ax_psi.set_ylim(0, 1)
-    snapshot(ax_snap, result, rows)
+    ax_psi.legend(frameon=False, fontsize=7)
+
+    for n, height, bounded, source in published_heights():
+        ax_h.plot(n, height, "s", color="C7", mfc="none" if bounded else "C7", ms=6)
+        ax_h.annotate(source.replace(" et al.", "").replace(" & ", "-"), (n, height),
+                      fontsize=6, xytext=(5, 3), textcoords="offset points")
+    for k, n in enumerate(sizes):
+        loop = summary[n]["loop"]
+        if loop is not None:
+            ax_h.errorbar(n, loop["height"], loop["error"], fmt="o", color=_color(k),
+                          capsize=3, ms=6, label=f"edmd2d, N = {_size(n)}")
+    ax_h.set_xscale("log")
+    ax_h.set_yscale("log")
+    ax_h.set_xlabel("N")
+    ax_h.set_ylabel(r"loop height in $\beta P d^2$")
+    ax_h.set_title("grey: published (open: the minimum is the last point, so more)",
+                   fontsize=8)
+    if any(summary[n]["loop"] is not None for n in sizes):
+        ax_h.legend(frameon=False, fontsize=7)
+    snapshot(ax_snap, rows)
     fig.tight_layout()
     out.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(out, dpi=110)
+    fig.savefig(out, dpi=100)
     plt.close(fig)
+    return summary
+
+
+def main(out: Path, directory: Path, scheduler=None, workers=None):
+    """Runs (or resumes) the sweep, prints its table and loop heights, and draws the
+    figure; returns the rows."""
+    result = run_sweep(directory, scheduler, workers)
+    rows = table(result)
+    figure(rows, out)
     (directory / "summary.json").write_text(json.dumps(rows, indent=1))
     print(f"wrote {out} and {directory / 'results.csv'}")
     return rows
 
 
-def _color(k: int, kind: str) -> str:
-    """A colour per system size ``k`` and start."""
-    return f"C{(4 * k + (1 if kind == 'liquid' else 3)) % 10}"
+def plot(out: Path, directories) -> list[dict]:
+    """The figure and the table of finished sweeps (of any sizes, or a sweep still
+    running: its finished points), without running anything; returns the rows."""
+    rows = []
+    for directory in directories:
+        from edmd2d import ensemble
+
+        rows += table(ensemble.load(directory))
+    if not rows:
+        raise SystemExit(f"no finished point in {', '.join(map(str, directories))}")
+    summary = figure(rows, out)
+    csv = out.with_suffix(".csv")
+    with csv.open("w") as f:
+        f.write("n,packing_fraction,pressure,pressure_error,runs,psi6\n")
+        for n, entry in summary.items():
+            for q in entry["points"]:
+                f.write(f"{n},{q['eta']:.3f},{q['pressure']:.5f},{q['error']:.5f},"
+                        f"{q['runs']},{q['psi6']:.4f}\n")
+    print(f"wrote {out} and {csv}")
+    return rows
 
 
-def snapshot(ax, result, rows):
+def _color(k: int) -> str:
+    """A colour per system size ``k``."""
+    return ("C0", "C1", "C3", "C4", "C5")[k % 5]
+
+
+def _size(n: int) -> str:
+    """``64$^2$`` for a square number of disks, else the number."""
+    k = math.isqrt(n)
+    return f"{k}$^2$" if k * k == n else str(n)
+
+
+def snapshot(ax, rows):
     """The final state of the point nearest the middle of the coexistence region (the
-    largest N), each disk coloured by the phase of its local psi_6."""
+    largest N, a liquid start if there is one), each disk coloured by the phase of its
+    local psi_6."""
     import matplotlib.pyplot as plt
     from matplotlib.collections import EllipseCollection
 
-    if not rows:
-        return
     n = max(r["n"] for r in rows)
     pick = min((r for r in rows if r["n"] == n),
-               key=lambda r: abs(r["packing_fraction"] - 0.708))
-    sim = ed.checkpoint.load(result.output / "tasks" / pick["task"] / "state.edmd2d")
+               key=lambda r: (abs(r["packing_fraction"] - 0.708), r["start"] != "liquid"))
+    sim = ed.checkpoint.load(pick["state"])
     _, local = ed.hexatic_order(sim)
     phase = (np.angle(local) / (2 * np.pi)) % 1.0
     color = plt.get_cmap("hsv")(phase)
@@ -233,8 +467,8 @@ def snapshot(ax, result, rows):
     ax.set_aspect("equal")
     ax.set_xticks([])
     ax.set_yticks([])
-    ax.set_title(f"N = {sim.n}, $\\eta$ = {pick['packing_fraction']:.3f}: "
-                 r"phase of local $\psi_6$", fontsize=9)
+    ax.set_title(f"N = {_size(sim.n)}, $\\eta$ = {pick['packing_fraction']:.3f}, "
+                 f"{pick['start']} start: phase of local $\\psi_6$", fontsize=9)
 
 
 if __name__ == "__main__":
@@ -260,7 +494,17 @@ if __name__ == "__main__":
     parser.add_argument("--workers", type=int, default=None, help="local Dask workers")
     parser.add_argument("--sweep", type=Path, default=None,
                         help="the sweep's directory (default next to the figure)")
+    mode.add_argument("--plot", type=Path, nargs="+", metavar="SWEEP", default=None,
+                      help="run nothing: draw the figure and write the table (OUT.csv) "
+                      "from the finished points of these sweeps (several sizes, or a "
+                      "sweep still running)")
     args = parser.parse_args()
+    if args.plot is not None:
+        for directory in args.plot:
+            if not (directory / "results.json").exists():
+                parser.error(f"--plot: {directory} holds no sweep (no results.json)")
+        plot(args.out, args.plot)
+        raise SystemExit(0)
     if args.full:
         globals().update(FULL)
     if args.n is not None:

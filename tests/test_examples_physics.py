@@ -153,3 +153,93 @@ def test_melting_example_runs_a_small_sweep_and_resumes(tmp_path, capsys):
     again = module.main(out, tmp_path / "sweep", scheduler="serial")
     assert again == rows  # (read back from the sweep, not run again)
     assert "wrote" in capsys.readouterr().out
+    # --plot draws the same rows from the finished sweep without running anything
+    drawn = module.plot(tmp_path / "plot.png", [tmp_path / "sweep"])
+    assert drawn == rows and (tmp_path / "plot.png").stat().st_size > 10_000
+    lines = (tmp_path / "plot.csv").read_text().splitlines()
+    assert lines[0].startswith("n,packing_fraction,pressure") and len(lines) == 3
+    assert float(lines[1].split(",")[2]) == pytest.approx(rows[0]["pressure"], abs=1e-5)
+
+
+def test_melting_runs_at_one_point_combine_with_their_scatter():
+    """One run stays as it is; runs that agree keep the weighted mean's error; runs
+    that disagree by more than their errors widen it by sqrt(chi^2 / dof); the halves
+    of each run follow from its mean and drift."""
+    module = load("hard_disk_melting")
+    scale = 4 * 0.72 / math.pi
+
+    def run(eta, p, err, start="liquid", drift=0.0):
+        s = 4 * eta / math.pi
+        return {"n": 4096, "packing_fraction": eta, "pressure": p, "pressure_error": err,
+                "Z": p / s, "drift": drift, "drift_error": 2 * err / s, "blocks": 10,
+                "psi6": 0.5, "start": start, "task": "t"}
+
+    (one, agree, apart), = module.combine([
+        run(0.70, 9.1, 0.01), run(0.71, 9.10, 0.01), run(0.71, 9.11, 0.01, "crystal"),
+        run(0.72, 9.10, 0.01, drift=0.02 / scale),
+        run(0.72, 9.16, 0.01, "crystal", drift=0.02 / scale)]).values()
+    assert (one["eta"], one["pressure"], one["error"], one["runs"]) == (0.70, 9.1, 0.01, 1)
+    assert agree["pressure"] == pytest.approx(9.105)
+    assert agree["error"] == pytest.approx(0.01 / 2 ** 0.5)
+    chi2 = 2 * (0.03 / 0.01) ** 2  # both runs 0.03 from the mean, one degree of freedom
+    assert apart["pressure"] == pytest.approx(9.13)
+    assert apart["error"] == pytest.approx(0.01 / 2 ** 0.5 * chi2 ** 0.5)
+    (first, e1), (second, e2) = apart["halves"]
+    assert (first, second) == pytest.approx((9.12, 9.14))  # 9.13 -+ 0.02 / 2
+    # each half's error is 0.01 sqrt 2, so chi^2 = 2 (0.03 / 0.0141)^2 = 9 scales by 3
+    assert (e1, e2) == pytest.approx((0.03, 0.03))
+    # 9 windows, 4 then 5: Z = (4 A + 5 B) / 9 with B - A = drift, and eA^2 / eB^2 = 5 / 4
+    (odd,), = module.combine([{**run(0.7, 9.1, 0.01, drift=0.09), "blocks": 9}]).values()
+    (a, ea), (b, eb) = odd["halves"]
+    assert (4 * a + 5 * b) / 9 == pytest.approx(9.1)
+    assert b - a == pytest.approx(0.09 * 4 * 0.7 / math.pi)
+    assert (ea / eb) ** 2 == pytest.approx(5 / 4)
+    assert math.hypot(ea, eb) == pytest.approx(2 * 0.01)
+
+
+def test_loop_height_is_not_inflated_by_noise():
+    """On a loop of known height 0.08 with flat extremes (as at 64^2), measured with
+    errors 0.015 per point (each half 0.015 sqrt 2), the highest point less the
+    lowest one after it is too large by about 2.4 errors on average; the height from
+    split halves is not.  Over 300 noisy curves its mean lies within 4 standard
+    errors of that mean (0.006) of the truth while the raw difference lies 0.02 or
+    more above it; its error bar is larger than its spread, by less than 35 %."""
+    module = load("hard_disk_melting")
+    eta = np.round(np.arange(0.694, 0.7201, 0.002), 3)
+    true = np.where(eta <= 0.704, 9.18, np.where(eta <= 0.716, 9.10, 9.25))
+    true[eta == 0.694] = 9.10
+
+    def points(first, second, error):
+        return [{"eta": e, "pressure": (a + b) / 2, "error": error / 2 ** 0.5,
+                 "halves": ((a, error), (b, error)), "runs": 1, "psi6": 0.5}
+                for e, a, b in zip(eta, first, second)]
+
+    exact = module.loop_height(points(true, true, 1e-9), samples=20)
+    assert exact["height"] == pytest.approx(0.08) and exact["raw"] == pytest.approx(0.08)
+    assert (exact["eta_max"], exact["eta_min"], exact["bounded"]) == (0.696, 0.706, False)
+    rng = np.random.default_rng(7)
+    sigma = 0.015 * 2 ** 0.5
+    heights, raw, errors = [], [], []
+    for _ in range(300):
+        a, b = (true + sigma * rng.standard_normal(len(eta)) for _ in range(2))
+        loop = module.loop_height(points(a, b, sigma), samples=200,
+                                  seed=int(rng.integers(1 << 30)))
+        heights.append(loop["height"])
+        raw.append(loop["raw"])
+        errors.append(loop["error"])
+    spread = np.std(heights, ddof=1)
+    assert abs(np.mean(heights) - 0.08) < 4 * spread / np.sqrt(300)
+    assert np.mean(raw) - 0.08 > 0.02
+    assert spread < np.mean(errors) < 1.35 * spread  # conservative (see loop_height)
+
+
+def test_published_loop_heights_follow_the_curves():
+    """The heights drawn from the published curves: they shrink with N, and the 128^2
+    curve of Li et al. ends at its lowest point (so its height is a lower bound)."""
+    module = load("hard_disk_melting")
+    heights = module.published_heights()
+    ns = [n for n, *_ in heights]
+    assert ns == sorted(ns)
+    assert all(a[1] > b[1] for a, b in zip(heights, heights[1:]))
+    assert [n for n, _, bounded, _ in heights if bounded] == [128 ** 2]
+    assert heights[-1][1] == pytest.approx(9.18800 - 9.18218)  # 1024^2: 0.702 to 0.714

@@ -131,8 +131,7 @@ def melting_point(parameters: dict, seed, workdir: Path) -> dict:
     """One point of the sweep: build, equilibrate, measure in windows (see the module
     notes), checkpointing after every window and continuing from the checkpoint."""
     n, eta = int(parameters["n"]), float(parameters["packing_fraction"])
-    windows_eq = int(round(parameters["equilibrate"] / parameters["measure"]
-                           * parameters["blocks"]))
+    windows_eq = _windows_eq(parameters)
     windows = windows_eq + int(parameters["blocks"])
     path = workdir / "state.edmd2d"
     if path.exists():
@@ -151,20 +150,37 @@ def melting_point(parameters: dict, seed, workdir: Path) -> dict:
         record["psi6"].append(abs(ed.hexatic_order(sim)[0]))
         record["collisions"].append(sim.counts.collisions / n)
         ed.checkpoint.save(sim, path, metadata=record)
-    z = np.array(record["z"][windows_eq:])
-    half = len(z) // 2
+    return summarize(record, windows_eq, eta)
+
+
+def _statistics(x) -> tuple[float, float, float, float]:
+    """The mean of the windows ``x``, its standard error, and the drift: the mean of
+    the second half of the windows less the first half's, with its error."""
+    x = np.asarray(x, dtype=float)
+    half = len(x) // 2
+    drift_error = math.hypot(x[half:].std(ddof=1) / math.sqrt(len(x) - half),
+                             x[:half].std(ddof=1) / math.sqrt(half))
+    return (float(x.mean()), float(x.std(ddof=1) / math.sqrt(len(x))),
+            float(x[half:].mean() - x[:half].mean()), float(drift_error))
+
+
+def summarize(record: dict, windows_eq: int, eta: float) -> dict:
+    """What a point returns, from the windows of its checkpoint's record after the
+    first ``windows_eq``: ``Z``, ``beta P d^2 = Z 4 eta / pi``, ``|Psi_6|``, the drifts
+    of ``Z`` and of ``|Psi_6|``, each with its error, and the collisions per disk."""
+    z, z_err, drift, drift_err = _statistics(record["z"][windows_eq:])
+    psi, psi_err, psi_drift, psi_drift_err = _statistics(record["psi6"][windows_eq:])
     scale = 4.0 * eta / math.pi  # beta P d^2 = Z rho d^2
-    z_err = float(z.std(ddof=1) / math.sqrt(len(z)))
-    drift = float(z[half:].mean() - z[:half].mean())
-    drift_err = float(math.hypot(z[half:].std(ddof=1) / math.sqrt(len(z) - half),
-                                 z[:half].std(ddof=1) / math.sqrt(half)))
-    psi = np.array(record["psi6"][windows_eq:])
-    return {"Z": float(z.mean()), "Z_error": z_err,
-            "pressure": float(z.mean() * scale), "pressure_error": z_err * scale,
-            "psi6": float(psi.mean()), "psi6_error": float(psi.std(ddof=1)
-                                                           / math.sqrt(len(psi))),
-            "drift": drift, "drift_error": drift_err,
+    return {"Z": z, "Z_error": z_err, "pressure": z * scale, "pressure_error": z_err * scale,
+            "psi6": psi, "psi6_error": psi_err, "drift": drift, "drift_error": drift_err,
+            "psi6_drift": psi_drift, "psi6_drift_error": psi_drift_err,
             "collisions_per_disk": float(record["collisions"][-1])}
+
+
+def _windows_eq(parameters: dict) -> int:
+    """The number of equilibration windows of a point."""
+    return int(round(parameters["equilibrate"] / parameters["measure"]
+                     * parameters["blocks"]))
 
 
 def run_sweep(directory: Path, scheduler, workers):
@@ -186,9 +202,15 @@ def table(result) -> list[dict]:
             print(f"  {task['task']} failed: {task['error']['type']}: "
                   f"{task['error']['message']}")
             continue
-        rows.append({**task["parameters"], **task["values"], "task": task["task"],
-                     "seconds": task["seconds"],
-                     "state": str(result.output / "tasks" / task["task"] / "state.edmd2d")})
+        state = result.output / "tasks" / task["task"] / "state.edmd2d"
+        row = {**task["parameters"], **task["values"], "task": task["task"],
+               "seconds": task["seconds"], "state": str(state)}
+        if "start" in row and "psi6_drift" not in row and state.exists():
+            # a result without the drift of |Psi_6|: all values again from the
+            # windows its checkpoint keeps
+            row.update(summarize(ed.checkpoint.read_metadata(state),
+                                 _windows_eq(row), row["packing_fraction"]))
+        rows.append(row)
     return rows
 
 
@@ -303,11 +325,12 @@ def report(rows) -> dict:
     """Prints the runs, the combined points and the loop heights; returns the latter
     two (``{N: {"points": ..., "loop": ...}}``)."""
     print(f"  {'N':>6} {'eta':>6} {'start':>8} {'beta P d^2':>18} {'|Psi_6|':>7} "
-          f"{'drift of Z':>16} {'coll/disk':>9} {'s':>6}")
+          f"{'drift of Z':>16} {'drift of |Psi_6|':>16} {'coll/disk':>9} {'s':>6}")
     for r in sorted(rows, key=lambda r: (r["n"], r["packing_fraction"], r["start"])):
         print(f"  {r['n']:6d} {r['packing_fraction']:6.3f} {r['start']:>8} "
               f"{r['pressure']:9.4f} +- {r['pressure_error']:.4f} {r['psi6']:7.3f} "
               f"{r['drift']:+8.4f} +- {r['drift_error']:.4f} "
+              f"{r['psi6_drift']:+8.4f} +- {r['psi6_drift_error']:.4f} "
               f"{r['collisions_per_disk']:9.0f} {r['seconds']:6.0f}")
     summary = {}
     for n, points in combine(rows).items():
@@ -324,17 +347,19 @@ def report(rows) -> dict:
     return summary
 
 
-def figure(rows, out: Path) -> dict:
-    """The figure of the module notes from the rows of one or more sweeps; returns
-    :func:`report`'s summary."""
+def figure(rows, out: Path, fluid=()) -> dict:
+    """The figure of the module notes from the rows of one or more sweeps (and, with
+    ``fluid``, the rows of an equation-of-state sweep of the command line,
+    ``edmd2d sweep examples/eos_full.toml``, for the whole equation of state);
+    returns :func:`report`'s summary."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     summary = report(rows)
-    fig, axes = plt.subplots(2, 2, figsize=(13, 10.5))
-    (ax, ax_psi), (ax_h, ax_snap) = axes
+    fig, axes = plt.subplots(2, 3, figsize=(18, 10.5))
+    (ax, ax_psi, ax_h), (ax_t, ax_eos, ax_snap) = axes
     for (n, data), style in zip(BERNARD_KRAUTH_2011.items(), ("C7-", "C7--")):
         ax.plot(list(data), list(data.values()), style, lw=1,
                 label=f"Bernard & Krauth 2011, N = {int(math.isqrt(n))}$^2$")
@@ -391,6 +416,8 @@ def figure(rows, out: Path) -> dict:
                    fontsize=8)
     if any(summary[n]["loop"] is not None for n in sizes):
         ax_h.legend(frameon=False, fontsize=7)
+    series(ax_t, rows)
+    equation_of_state(ax_eos, summary, fluid)
     snapshot(ax_snap, rows)
     fig.tight_layout()
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -413,14 +440,16 @@ def main(out: Path, directory: Path, scheduler=None, workers=None):
 def plot(out: Path, directories) -> list[dict]:
     """The figure and the table of finished sweeps (of any sizes, or a sweep still
     running: its finished points), without running anything; returns the rows."""
-    rows = []
-    for directory in directories:
-        from edmd2d import ensemble
+    from edmd2d import ensemble
 
-        rows += table(ensemble.load(directory))
+    rows, fluid = [], []
+    for directory in directories:
+        for row in table(ensemble.load(directory)):
+            (rows if "start" in row else fluid).append(row)
     if not rows:
-        raise SystemExit(f"no finished point in {', '.join(map(str, directories))}")
-    summary = figure(rows, out)
+        raise SystemExit(f"no finished point of this example in "
+                         f"{', '.join(map(str, directories))}")
+    summary = figure(rows, out, fluid)
     csv = out.with_suffix(".csv")
     with csv.open("w") as f:
         f.write("n,packing_fraction,pressure,pressure_error,runs,psi6\n")
@@ -441,6 +470,68 @@ def _size(n: int) -> str:
     """``64$^2$`` for a square number of disks, else the number."""
     k = math.isqrt(n)
     return f"{k}$^2$" if k * k == n else str(n)
+
+
+def series(ax, rows, low: float = 0.710, high: float = 0.718):
+    """The pressure of every window against the collisions per disk so far, for the
+    runs at ``low <= eta <= high`` of the size whose runs there are the longest: how
+    the starts approach each other (dotted: the end of each run's equilibration)."""
+    near = [r for r in rows if low - 1e-9 <= r["packing_fraction"] <= high + 1e-9]
+    if not near:
+        ax.set_axis_off()
+        return
+    n = max(near, key=lambda r: (r["collisions_per_disk"], r["n"]))["n"]
+    etas = sorted({r["packing_fraction"] for r in near if r["n"] == n})
+    for r in sorted((r for r in near if r["n"] == n), key=lambda r: r["start"]):
+        record = ed.checkpoint.read_metadata(r["state"])
+        p = np.array(record["z"]) * 4.0 * r["packing_fraction"] / math.pi
+        color = f"C{etas.index(r['packing_fraction'])}"
+        ax.plot(record["collisions"], p, "-" if r["start"] == "liquid" else "--",
+                color=color, marker="o" if r["start"] == "liquid" else "^", ms=3, lw=1,
+                label=f"$\\eta$ = {r['packing_fraction']:.3f}, {r['start']} start")
+        ax.axvline(record["collisions"][_windows_eq(r) - 1], color=color, ls=":", lw=1)
+    ax.set_xlabel("collisions per disk")
+    ax.set_ylabel(r"$\beta P d^2$ of each window")
+    ax.set_title(f"N = {_size(n)}: the windows of the runs near the minimum", fontsize=9)
+    ax.legend(frameon=False, fontsize=7)
+
+
+def equation_of_state(ax, summary, fluid):
+    """``Z`` from the dilute gas to the solid: the fluid sweep's points (mean of its
+    replicas) and this example's combined points, against Henderson's equation of
+    state and the free-volume cell theory of the solid, ``Z = 1 / (1 - sqrt(eta /
+    eta_cp))``."""
+    if not fluid:
+        ax.set_axis_off()
+        return
+    from edmd2d import theory
+
+    by_eta: dict = {}
+    for r in fluid:
+        by_eta.setdefault(round(r["packing_fraction"], 6), []).append(r)
+    eta = np.array(sorted(by_eta))
+    z = [_mean([r["Z"] for r in by_eta[e]], [r["Z_error"] for r in by_eta[e]])
+         for e in eta]
+    n_fluid = sorted({r["n"] for r in fluid})
+    ax.errorbar(eta, [v for v, _ in z], [e for _, e in z], fmt="o", ms=4, color="k",
+                label=f"edmd2d fluid sweep, N = {', '.join(map(str, n_fluid))}")
+    for k, (n, entry) in enumerate(sorted(summary.items())):
+        q = entry["points"]
+        ax.errorbar([p["eta"] for p in q], [p["pressure"] * math.pi / (4 * p["eta"])
+                                            for p in q],
+                    [p["error"] * math.pi / (4 * p["eta"]) for p in q], fmt="o", ms=3,
+                    color=_color(k), label=f"edmd2d melting sweep, N = {_size(n)}")
+    x = np.linspace(0.01, 0.73, 300)
+    ax.plot(x, theory.henderson_z(x), "C7-", lw=1, label="Henderson (fluid)")
+    x = np.linspace(0.69, 0.75, 50)
+    ax.plot(x, 1.0 / (1.0 - np.sqrt(x / theory.ETA_CLOSE_PACKED)), "C7--", lw=1,
+            label=r"free volume $1/(1-\sqrt{\eta/\eta_{cp}})$ (solid)")
+    ax.set_xlabel(r"packing fraction $\eta$")
+    ax.set_ylabel(r"$Z = \beta P / \rho$")
+    ax.set_xlim(0, 0.74)
+    ax.set_ylim(0, 12)
+    ax.legend(frameon=False, fontsize=7, loc="upper left")
+    ax.set_title("the whole equation of state", fontsize=9)
 
 
 def snapshot(ax, rows):

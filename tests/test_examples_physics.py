@@ -150,6 +150,11 @@ def test_melting_example_runs_a_small_sweep_and_resumes(tmp_path, capsys):
         assert r["pressure"] == pytest.approx(r["Z"] * 4 * r["packing_fraction"] / math.pi)
         assert 0.0 < r["pressure_error"] < 0.5 and 0.0 <= r["psi6"] <= 1.0
         assert r["collisions_per_disk"] >= 1400
+        # the drifts: second half of the measured windows less the first half
+        record = module.ed.checkpoint.read_metadata(r["state"])
+        for key, drift in (("z", r["drift"]), ("psi6", r["psi6_drift"])):
+            measured = np.array(record[key][len(record[key]) - 5:])
+            assert drift == pytest.approx(measured[2:].mean() - measured[:2].mean())
     again = module.main(out, tmp_path / "sweep", scheduler="serial")
     assert again == rows  # (read back from the sweep, not run again)
     assert "wrote" in capsys.readouterr().out

@@ -30,10 +30,12 @@ Writes a figure (``.png``): the measured loop with error bars beside the publish
 equations of state (Bernard and Krauth 2011 at 256^2 and 1024^2; Li et al., J. Chem.
 Phys. 157, 234111 (2022) at 870 disks and at 128^2 in the same box shape, from the data
 distributed with that paper), the order ``|Psi_6|`` against packing fraction, the
-height of the loop against ``N`` beside the published ones, and a snapshot inside the
+height and the fall of the loop against ``N`` beside the published ones, the
+pressure of each window near the loop's minimum, the whole equation of state (given
+the command line's fluid sweep), and a snapshot inside the
 coexistence region coloured by the phase of each disk's local ``psi_6`` (hexatic
 domains share one colour); writes the table of the sweep (``results.csv`` in the
-sweep's directory) and prints it with the loop heights::
+sweep's directory) and prints it with the loop heights and falls::
 
     python examples/hard_disk_melting.py [OUT.png] [--quick | --full] [--n 4096]
         [--etas 0.704,0.712] [--starts liquid,crystal] [--collisions 7e4]
@@ -46,16 +48,17 @@ disks, 0.690 to 0.724 in steps of 0.002, liquid and crystal starts, 2e4 + 7e4
 collisions per disk (128^2: about half an hour of one core per point; run it in the
 background, it resumes from its checkpoints when started again).  ``--plot`` runs
 nothing: it draws the figure from the finished points of one or more sweeps (several
-system sizes, or a sweep still running) and writes their combined points and loop
-heights to ``OUT.csv``.
+system sizes, or a sweep still running) and writes their combined points to
+``OUT.csv`` (the loop heights and falls are printed).
 
 The runs at one ``(N, eta)`` (starts, replicas, several sweeps) are combined as a
 weighted mean whose error is widened by the scatter of the runs when they disagree
-(:func:`combine`).  The loop height is the highest combined pressure at ``eta <=
-0.710`` less the lowest one after it at ``eta <= 0.718``, with the two extremes found
-in one half of the measured windows and their pressures read from the other, so that
-the noise does not inflate it (:func:`loop_height`); the published heights come from
-the published curves by the same rule.
+(:func:`combine`).  Two numbers measure the loop against ``N``: its height, the
+highest combined pressure at ``eta <= 0.710`` less the lowest one after it at ``eta
+<= 0.718``, as the published heights are read off the published curves, which noise
+inflates (:func:`loop_height`); and the fall of the pressure from 0.704 to 0.716, two
+fixed points inside the loop of every published size from 870 disks up, which it
+does not (:func:`fall`).
 """
 
 from __future__ import annotations
@@ -109,6 +112,10 @@ PUBLISHED_LOOPS = {
 # lie at 0.692-0.704), its minimum after the maximum at eta <= MIN_BELOW (beyond it the
 # pressure of the hexatic branch rises steeply at every size).
 MAX_BELOW, MIN_BELOW = 0.710, 0.718
+# The fall of the pressure between two fixed packing fractions, inside the loop of
+# every published size from 870 disks up (Li et al.'s 128^2 points include both):
+# unlike the loop's height, it needs no search for extremes, so noise does not bias it.
+FALL = (0.704, 0.716)
 
 NS = (64 ** 2,)
 ETAS = (0.692, 0.698, 0.702, 0.708, 0.714, 0.720)
@@ -220,7 +227,11 @@ def _mean(values, errors) -> tuple[float, float]:
     Data Group's scale factor), so that runs which have not yet agreed widen the
     error instead of hiding in it."""
     values = np.asarray(values, dtype=float)
-    w = 1.0 / np.asarray(errors, dtype=float) ** 2
+    errors = np.asarray(errors, dtype=float)
+    if not (np.isfinite(errors).all() and (errors > 0).all() and np.isfinite(values).all()):
+        raise ValueError(f"values and errors must be finite, errors positive: {values}, "
+                         f"{errors}")
+    w = 1.0 / errors ** 2
     mean = float((w * values).sum() / w.sum())
     error = float(1.0 / math.sqrt(w.sum()))
     if len(values) > 1:
@@ -233,117 +244,125 @@ def combine(rows) -> dict:
     """The runs at each ``(N, eta)`` (starts and replicas) as one pressure.
 
     Returns ``{N: [point, ...]}`` sorted by ``eta``, each point a dict: ``eta``,
-    ``pressure`` and ``error`` (:func:`_mean` of the runs), ``runs``, ``psi6`` (their
-    mean) and ``halves``: the same mean of the first and of the second half of every
-    run's measured windows, ``((p, error), (p, error))``.  A run's halves follow from
-    its mean and drift: with ``k`` windows, ``h = k // 2`` in the first half, ``Z =
-    (h A + (k - h) B) / k`` and ``drift = B - A``, and the drift's error splits as
-    the halves' sizes (``drift_error^2 = eA^2 + eB^2``, ``eA^2 / eB^2 = (k - h) / h``).
+    ``pressure`` and ``error`` (:func:`_mean` of the runs), ``runs`` and ``psi6``
+    (the runs' mean ``|Psi_6|``).
     """
     groups: dict = {}
     for r in rows:
         groups.setdefault((r["n"], round(r["packing_fraction"], 6)), []).append(r)
     out: dict = {}
     for (n, eta), runs in sorted(groups.items()):
-        scale = 4.0 * eta / math.pi
         p, e = _mean([r["pressure"] for r in runs], [r["pressure_error"] for r in runs])
-        halves = []
-        for first in (True, False):
-            values, errors = [], []
-            for r in runs:
-                k = int(r["blocks"])
-                h = k // 2
-                share = (k - h) / k if first else h / k  # of the drift, and its error^2
-                values.append(scale * (r["Z"] - r["drift"] * share if first
-                                       else r["Z"] + r["drift"] * share))
-                errors.append(scale * r["drift_error"] * math.sqrt(share))
-            halves.append(_mean(values, errors))
-        halves = tuple(halves)
         out.setdefault(n, []).append({
             "eta": eta, "pressure": p, "error": e, "runs": len(runs),
-            "psi6": float(np.mean([r["psi6"] for r in runs])), "halves": halves})
+            "psi6": float(np.mean([r["psi6"] for r in runs]))})
     return out
 
 
-def _extremes(eta, p) -> tuple[int, int]:
+def _extremes(eta, p):
     """The indices of the loop's maximum, the highest pressure at ``eta <=
-    MAX_BELOW``, and of its minimum, the lowest one after it at ``eta <= MIN_BELOW``."""
+    MAX_BELOW``, and of its minimum, the lowest one after it at ``eta <= MIN_BELOW``,
+    and whether that minimum is the last point there (the loop may go on lower);
+    ``None`` without a point at ``eta <= MAX_BELOW``."""
     eta, p = np.asarray(eta), np.asarray(p)
     top = np.flatnonzero(eta <= MAX_BELOW + 1e-9)
+    if len(top) == 0:
+        return None
     i = int(top[np.argmax(p[top])])
     after = np.flatnonzero((eta >= eta[i]) & (eta <= MIN_BELOW + 1e-9))
-    return i, int(after[np.argmin(p[after])])
+    j = int(after[np.argmin(p[after])])
+    return i, j, bool(j == after[-1])
 
 
-def _split_height(eta, first, second) -> float:
-    """The extremes found in one half of the data, their pressures read from the
-    other half, and the two ways round averaged."""
-    i, j = _extremes(eta, first)
-    k, m = _extremes(eta, second)
-    return 0.5 * ((second[i] - second[j]) + (first[k] - first[m]))
+def loop_height(points, samples: int = 4000, seed: int = 0):
+    """The height of the loop, from :func:`combine`'s points of one system size: the
+    highest pressure less the lowest one after it (:func:`_extremes`), as the
+    published heights are read off the published curves.
 
-
-def loop_height(points, samples: int = 4000, seed: int = 0) -> dict:
-    """The height of the loop, from :func:`combine`'s points of one system size.
-
-    The highest pressure less the lowest one after it (``raw``) is biased upwards by
-    the noise: the largest of several noisy values near a flat maximum lies above the
-    maximum, the smallest below the minimum (by about 2.4 errors for five points at
-    each).  So the extremes are found in the first half of the measured windows and
-    their pressures read from the second half, and the other way round, and the two
-    averaged (``height``): the noise that picks a point no longer sets its value.  The
-    error is the spread of that estimate over ``samples`` redrawings of both halves
-    from normal distributions of their means and errors; redrawn around noisy values,
-    the extremes are found less surely than in the data, so the error is somewhat
-    conservative (by about 20 % for the flat loop of the test).  ``bounded`` says the
-    minimum of the combined curve is its last point (the loop may go on lower).
+    Its ``error`` is that of the difference of the two points.  It is also biased
+    upwards by the noise, the largest of several noisy values near a flat maximum
+    lying above the maximum and the smallest below the minimum.  ``bias`` is what a
+    parametric bootstrap sees of that (the mean height of ``samples`` curves
+    redrawn from normal distributions of the points' means and errors, less the
+    height): an estimate that falls short of the true bias when several points
+    share an extreme, so read the height as ``height - bias`` or lower, within
+    ``error``.  ``None`` without a point at ``eta <= MAX_BELOW``.
     """
     eta = np.array([q["eta"] for q in points])
     p = np.array([q["pressure"] for q in points])
-    (a, ea), (b, eb) = (np.array([q["halves"][h] for q in points]).T for h in (0, 1))
-    i, j = _extremes(eta, p)
+    err = np.array([q["error"] for q in points])
+    found = _extremes(eta, p)
+    if found is None:
+        return None
+    i, j, bounded = found
     rng = np.random.default_rng(seed)
-    draws = [_split_height(eta, a + ea * rng.standard_normal(len(a)),
-                           b + eb * rng.standard_normal(len(b))) for _ in range(samples)]
-    return {"height": _split_height(eta, a, b), "error": float(np.std(draws, ddof=1)),
-            "raw": float(p[i] - p[j]), "eta_max": float(eta[i]), "eta_min": float(eta[j]),
-            "bounded": bool(j == len(eta) - 1)}
+    draws = p + err * rng.standard_normal((samples, len(p)))
+    heights = []
+    for d in draws:
+        k, m, _ = _extremes(eta, d)
+        heights.append(d[k] - d[m])
+    height = float(p[i] - p[j])
+    return {"height": height, "error": float(math.hypot(err[i], err[j])),
+            "bias": float(np.mean(heights) - height), "eta_max": float(eta[i]),
+            "eta_min": float(eta[j]), "bounded": bounded}
 
 
-def published_heights() -> list[tuple[int, float, bool, str]]:
-    """``(N, height, bounded, source)`` of the published curves (their errors, 1e-4 to
-    2e-3, are far below ours, so their heights are taken as they are)."""
+def fall(points, between=FALL):
+    """``(p(a) - p(b), error)`` between the packing fractions ``between = (a, b)``,
+    from :func:`combine`'s points (``None`` if either is missing)."""
+    at = {round(q["eta"], 6): q for q in points}
+    a, b = (at.get(round(e, 6)) for e in between)
+    if a is None or b is None:
+        return None
+    return a["pressure"] - b["pressure"], math.hypot(a["error"], b["error"])
+
+
+def published_loops() -> list[dict]:
+    """The loop height and the fall between ``FALL`` of each published curve
+    (their errors, 1e-4 to 2e-3, are far below ours, so they are taken as exact):
+    dicts of ``n``, ``height``, ``bounded``, ``fall`` (``None`` where the curve
+    lacks a point) and ``source``."""
     out = []
     for n, (curve, source) in PUBLISHED_LOOPS.items():
         eta = np.array(sorted(curve))
-        i, j = _extremes(eta, [curve[e] for e in eta])
-        out.append((n, curve[eta[i]] - curve[eta[j]], bool(j == len(eta) - 1), source))
+        p = np.array([curve[e] for e in eta])
+        i, j, bounded = _extremes(eta, p)
+        a, b = (curve.get(e) for e in FALL)
+        out.append({"n": n, "height": float(p[i] - p[j]), "bounded": bounded,
+                    "fall": None if a is None or b is None else a - b,
+                    "source": source})
     return out
 
 
 def report(rows) -> dict:
-    """Prints the runs, the combined points and the loop heights; returns the latter
-    two (``{N: {"points": ..., "loop": ...}}``)."""
+    """Prints the runs, the loop heights and falls, and the published ones; returns
+    ``{N: {"points": ..., "loop": ..., "fall": ...}}``."""
     print(f"  {'N':>6} {'eta':>6} {'start':>8} {'beta P d^2':>18} {'|Psi_6|':>7} "
           f"{'drift of Z':>16} {'drift of |Psi_6|':>16} {'coll/disk':>9} {'s':>6}")
     for r in sorted(rows, key=lambda r: (r["n"], r["packing_fraction"], r["start"])):
+        psi_drift = (f"{r['psi6_drift']:+8.4f} +- {r['psi6_drift_error']:.4f}"
+                     if "psi6_drift" in r else f"{'':>16}")
         print(f"  {r['n']:6d} {r['packing_fraction']:6.3f} {r['start']:>8} "
               f"{r['pressure']:9.4f} +- {r['pressure_error']:.4f} {r['psi6']:7.3f} "
-              f"{r['drift']:+8.4f} +- {r['drift_error']:.4f} "
-              f"{r['psi6_drift']:+8.4f} +- {r['psi6_drift_error']:.4f} "
+              f"{r['drift']:+8.4f} +- {r['drift_error']:.4f} {psi_drift} "
               f"{r['collisions_per_disk']:9.0f} {r['seconds']:6.0f}")
+    a, b = FALL
     summary = {}
     for n, points in combine(rows).items():
         loop = loop_height(points) if len(points) >= 3 else None
-        summary[n] = {"points": points, "loop": loop}
+        drop = fall(points)
+        summary[n] = {"points": points, "loop": loop, "fall": drop}
         if loop is not None:
             print(f"  N = {n}: loop height {loop['height']:.4f} +- {loop['error']:.4f} "
                   f"(maximum at {loop['eta_max']:.3f}, minimum at {loop['eta_min']:.3f}"
-                  f"{', or beyond' if loop['bounded'] else ''}; highest less lowest "
-                  f"point {loop['raw']:.4f})")
-    for n, height, bounded, source in published_heights():
-        print(f"  published, N = {n}: loop height {height:.4f}"
-              f"{' or more' if bounded else ''} ({source})")
+                  f"{' or beyond' if loop['bounded'] else ''}; noise bias "
+                  f"{loop['bias']:+.4f} or more)")
+        if drop is not None:
+            print(f"  N = {n}: fall from {a} to {b}: {drop[0]:.4f} +- {drop[1]:.4f}")
+    for q in published_loops():
+        fall_text = "" if q["fall"] is None else f", fall from {a} to {b}: {q['fall']:.4f}"
+        print(f"  published, N = {q['n']}: loop height {q['height']:.4f}"
+              f"{' or more' if q['bounded'] else ''}{fall_text} ({q['source']})")
     return summary
 
 
@@ -399,22 +418,32 @@ def figure(rows, out: Path, fluid=()) -> dict:
     ax_psi.set_ylim(0, 1)
     ax_psi.legend(frameon=False, fontsize=7)
 
-    for n, height, bounded, source in published_heights():
-        ax_h.plot(n, height, "s", color="C7", mfc="none" if bounded else "C7", ms=6)
-        ax_h.annotate(source.replace(" et al.", "").replace(" & ", "-"), (n, height),
-                      fontsize=6, xytext=(5, 3), textcoords="offset points")
+    for q in published_loops():
+        ax_h.plot(q["n"], q["height"], "s", color="C7", mfc="none" if q["bounded"] else "C7",
+                  ms=6)
+        ax_h.annotate(q["source"].replace(" et al.", "").replace(" & ", "-"),
+                      (q["n"], q["height"]), fontsize=6, xytext=(5, 3),
+                      textcoords="offset points")
+        if q["fall"] is not None and q["fall"] > 0:
+            ax_h.plot(q["n"], q["fall"], "D", color="C7", mfc="none", ms=5)
     for k, n in enumerate(sizes):
-        loop = summary[n]["loop"]
+        loop, drop = summary[n]["loop"], summary[n]["fall"]
         if loop is not None:
-            ax_h.errorbar(n, loop["height"], loop["error"], fmt="o", color=_color(k),
-                          capsize=3, ms=6, label=f"edmd2d, N = {_size(n)}")
+            ax_h.errorbar(n, loop["height"], loop["error"], fmt="s", color=_color(k),
+                          capsize=3, ms=6, mfc="none",
+                          label=f"edmd2d, N = {_size(n)}: loop height")
+        if drop is not None:
+            ax_h.errorbar(n * 1.08, drop[0], drop[1], fmt="D", color=_color(k), capsize=3,
+                          ms=5, label=f"edmd2d, N = {_size(n)}: fall {FALL[0]} to {FALL[1]}")
+    ax_h.axhline(0.0, color="0.8", lw=0.8)
     ax_h.set_xscale("log")
-    ax_h.set_yscale("log")
     ax_h.set_xlabel("N")
-    ax_h.set_ylabel(r"loop height in $\beta P d^2$")
-    ax_h.set_title("grey: published (open: the minimum is the last point, so more)",
-                   fontsize=8)
-    if any(summary[n]["loop"] is not None for n in sizes):
+    ax_h.set_ylabel(r"in $\beta P d^2$")
+    ax_h.set_title("squares: loop height (highest less lowest point; grey open: the "
+                   "curve ends at its minimum)\ndiamonds: the fall from "
+                   f"{FALL[0]} to {FALL[1]}; grey: published", fontsize=8)
+    if any(summary[n]["loop"] is not None or summary[n]["fall"] is not None
+           for n in sizes):
         ax_h.legend(frameon=False, fontsize=7)
     series(ax_t, rows)
     equation_of_state(ax_eos, summary, fluid)
@@ -431,6 +460,9 @@ def main(out: Path, directory: Path, scheduler=None, workers=None):
     figure; returns the rows."""
     result = run_sweep(directory, scheduler, workers)
     rows = table(result)
+    if not rows:
+        print(f"no point finished; nothing to draw (the sweep is in {directory})")
+        return rows
     figure(rows, out)
     (directory / "summary.json").write_text(json.dumps(rows, indent=1))
     print(f"wrote {out} and {directory / 'results.csv'}")
@@ -438,14 +470,22 @@ def main(out: Path, directory: Path, scheduler=None, workers=None):
 
 
 def plot(out: Path, directories) -> list[dict]:
-    """The figure and the table of finished sweeps (of any sizes, or a sweep still
-    running: its finished points), without running anything; returns the rows."""
+    """The figure of finished sweeps (of any sizes, or a sweep still running: its
+    finished points, and an equation-of-state sweep of the command line for the
+    whole equation of state), without running anything, and the combined points in
+    ``OUT.csv``; returns the rows of this example's points."""
     from edmd2d import ensemble
 
     rows, fluid = [], []
-    for directory in directories:
+    for directory in dict.fromkeys(Path(d).resolve() for d in directories):
         for row in table(ensemble.load(directory)):
-            (rows if "start" in row else fluid).append(row)
+            if "start" in row:
+                rows.append(row)
+            elif {"Z", "Z_error", "packing_fraction", "n"} <= row.keys():
+                fluid.append(row)  # an equation-of-state sweep of the command line
+            else:
+                print(f"  {directory}: {row['task']} is neither a point of this example "
+                      "nor of an equation-of-state sweep; left out")
     if not rows:
         raise SystemExit(f"no finished point of this example in "
                          f"{', '.join(map(str, directories))}")
@@ -476,7 +516,8 @@ def series(ax, rows, low: float = 0.710, high: float = 0.718):
     """The pressure of every window against the collisions per disk so far, for the
     runs at ``low <= eta <= high`` of the size whose runs there are the longest: how
     the starts approach each other (dotted: the end of each run's equilibration)."""
-    near = [r for r in rows if low - 1e-9 <= r["packing_fraction"] <= high + 1e-9]
+    near = [r for r in rows if low - 1e-9 <= r["packing_fraction"] <= high + 1e-9
+            and Path(r["state"]).exists()]
     if not near:
         ax.set_axis_off()
         return
@@ -506,15 +547,17 @@ def equation_of_state(ax, summary, fluid):
         return
     from edmd2d import theory
 
-    by_eta: dict = {}
-    for r in fluid:
-        by_eta.setdefault(round(r["packing_fraction"], 6), []).append(r)
-    eta = np.array(sorted(by_eta))
-    z = [_mean([r["Z"] for r in by_eta[e]], [r["Z_error"] for r in by_eta[e]])
-         for e in eta]
-    n_fluid = sorted({r["n"] for r in fluid})
-    ax.errorbar(eta, [v for v, _ in z], [e for _, e in z], fmt="o", ms=4, color="k",
-                label=f"edmd2d fluid sweep, N = {', '.join(map(str, n_fluid))}")
+    for k, n in enumerate(sorted({r["n"] for r in fluid})):
+        by_eta: dict = {}
+        for r in fluid:
+            if r["n"] == n:
+                by_eta.setdefault(round(r["packing_fraction"], 6), []).append(r)
+        eta = np.array(sorted(by_eta))
+        z = [_mean([r["Z"] for r in by_eta[e]], [r["Z_error"] for r in by_eta[e]])
+             for e in eta]
+        ax.errorbar(eta, [v for v, _ in z], [e for _, e in z], fmt="ov^s"[k % 4], ms=4,
+                    color="k", mfc="none" if k else "k",
+                    label=f"edmd2d fluid sweep, N = {n}")
     for k, (n, entry) in enumerate(sorted(summary.items())):
         q = entry["points"]
         ax.errorbar([p["eta"] for p in q], [p["pressure"] * math.pi / (4 * p["eta"])
@@ -541,6 +584,10 @@ def snapshot(ax, rows):
     import matplotlib.pyplot as plt
     from matplotlib.collections import EllipseCollection
 
+    rows = [r for r in rows if Path(r["state"]).exists()]
+    if not rows:
+        ax.set_axis_off()
+        return
     n = max(r["n"] for r in rows)
     pick = min((r for r in rows if r["n"] == n),
                key=lambda r: (abs(r["packing_fraction"] - 0.708), r["start"] != "liquid"))
@@ -591,7 +638,14 @@ if __name__ == "__main__":
                       "sweep still running)")
     args = parser.parse_args()
     if args.plot is not None:
+        given = [name for name in ("n", "etas", "starts", "collisions", "scheduler",
+                                   "workers", "sweep") if getattr(args, name) is not None]
+        if given:
+            parser.error(f"--plot runs nothing: --{given[0]} cannot be given with it")
         for directory in args.plot:
+            if directory.suffix in (".png", ".pdf", ".svg"):
+                parser.error(f"--plot: {directory} looks like the figure; give it "
+                             "first (OUT.png --plot SWEEP ...)")
             if not (directory / "results.json").exists():
                 parser.error(f"--plot: {directory} holds no sweep (no results.json)")
         plot(args.out, args.plot)

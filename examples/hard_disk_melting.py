@@ -359,6 +359,16 @@ def report(rows) -> dict:
                   f"{loop['bias']:+.4f} or more)")
         if drop is not None:
             print(f"  N = {n}: fall from {a} to {b}: {drop[0]:.4f} +- {drop[1]:.4f}")
+        if n in PUBLISHED_LOOPS:
+            curve, source = PUBLISHED_LOOPS[n]
+            common = [q for q in points if round(q["eta"], 3) in curve]
+            if common:
+                pulls = [(q["pressure"] - curve[round(q["eta"], 3)]) / q["error"]
+                         for q in common]
+                summary[n]["pulls"] = pulls
+                print(f"  N = {n} against {source} at the same N: chi^2 = "
+                      f"{sum(x * x for x in pulls):.1f} for {len(pulls)} points (pulls "
+                      + ", ".join(f"{x:+.1f}" for x in pulls) + ")")
     for q in published_loops():
         fall_text = "" if q["fall"] is None else f", fall from {a} to {b}: {q['fall']:.4f}"
         print(f"  published, N = {q['n']}: loop height {q['height']:.4f}"

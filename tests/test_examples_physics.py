@@ -254,3 +254,17 @@ def test_published_loops_follow_the_curves():
     assert loops[-1]["height"] == pytest.approx(9.18800 - 9.18218)  # 1024^2: .702, .714
     falls = [q["fall"] for q in loops if q["n"] >= 870]
     assert all(a > b > 0 for a, b in zip(falls, falls[1:]))
+
+
+def test_melting_report_compares_with_the_published_curve_of_the_same_size(capsys):
+    """At 128^2 the combined points are set against Li et al.'s curve: a point 2
+    errors above it and one on it give chi^2 = 4 for 2 points."""
+    module = load("hard_disk_melting")
+    rows = [{"n": 128 ** 2, "packing_fraction": eta, "start": "liquid",
+             "pressure": module.LI_2022_128[eta][0] + shift, "pressure_error": 0.01,
+             "psi6": 0.5, "drift": 0.0, "drift_error": 0.01, "psi6_drift": 0.0,
+             "psi6_drift_error": 0.01, "collisions_per_disk": 1e5, "seconds": 1.0}
+            for eta, shift in ((0.698, 0.02), (0.704, 0.0))]
+    summary = module.report(rows)
+    assert summary[128 ** 2]["pulls"] == pytest.approx([2.0, 0.0])
+    assert "chi^2 = 4.0 for 2 points" in capsys.readouterr().out

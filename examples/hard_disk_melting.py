@@ -524,16 +524,30 @@ def _size(n: int) -> str:
 
 def series(ax, rows, low: float = 0.710, high: float = 0.718):
     """The pressure of every window against the collisions per disk so far, for the
-    runs at ``low <= eta <= high`` of the size whose runs there are the longest: how
-    the starts approach each other (dotted: the end of each run's equilibration)."""
+    runs at ``low <= eta <= high`` of one size, the longest run of each packing
+    fraction and start: how the starts approach each other (dotted: the end of each
+    run's equilibration).  The size is the one with runs from both starts there,
+    then the longest runs, then the most disks."""
     near = [r for r in rows if low - 1e-9 <= r["packing_fraction"] <= high + 1e-9
             and Path(r["state"]).exists()]
     if not near:
         ax.set_axis_off()
         return
-    n = max(near, key=lambda r: (r["collisions_per_disk"], r["n"]))["n"]
-    etas = sorted({r["packing_fraction"] for r in near if r["n"] == n})
-    for r in sorted((r for r in near if r["n"] == n), key=lambda r: r["start"]):
+
+    def rank(n):
+        runs = [r for r in near if r["n"] == n]
+        return (len({r["start"] for r in runs}),
+                max(r["collisions_per_disk"] for r in runs), n)
+
+    n = max({r["n"] for r in near}, key=rank)
+    longest: dict = {}
+    for r in near:
+        key = (r["packing_fraction"], r["start"])
+        if r["n"] == n and (key not in longest or r["collisions_per_disk"]
+                            > longest[key]["collisions_per_disk"]):
+            longest[key] = r
+    etas = sorted({eta for eta, _ in longest})
+    for _, r in sorted(longest.items(), key=lambda item: (item[0][1], item[0][0])):
         record = ed.checkpoint.read_metadata(r["state"])
         p = np.array(record["z"]) * 4.0 * r["packing_fraction"] / math.pi
         color = f"C{etas.index(r['packing_fraction'])}"

@@ -49,7 +49,9 @@ collisions per disk (128^2: about half an hour of one core per point; run it in 
 background, it resumes from its checkpoints when started again).  ``--plot`` runs
 nothing: it draws the figure from the finished points of one or more sweeps (several
 system sizes, or a sweep still running) and writes their combined points to
-``OUT.csv`` (the loop heights and falls are printed).
+``OUT.csv`` (the loop heights and falls are printed).  A run continued in a sweep of
+more windows (its ``state.edmd2d`` copied into the new sweep's task directory before
+it starts) is counted once, as its longer run (:func:`drop_continued`).
 
 The runs at one ``(N, eta)`` (starts, replicas, several sweeps) are combined as a
 weighted mean whose error is widened by the scatter of the runs when they disagree
@@ -499,6 +501,7 @@ def plot(out: Path, directories) -> list[dict]:
     if not rows:
         raise SystemExit(f"no finished point of this example in "
                          f"{', '.join(map(str, directories))}")
+    rows = drop_continued(rows)
     summary = figure(rows, out, fluid)
     csv = out.with_suffix(".csv")
     with csv.open("w") as f:
@@ -509,6 +512,33 @@ def plot(out: Path, directories) -> list[dict]:
                         f"{q['runs']},{q['psi6']:.4f}\n")
     print(f"wrote {out} and {csv}")
     return rows
+
+
+def drop_continued(rows) -> list[dict]:
+    """The rows without those of runs that another row continued: a run whose
+    checkpoint was carried into a sweep of more windows (to run it longer) appears in
+    both sweeps, its windows in the shorter one the first windows of the longer one;
+    only the longer is kept, so that no window is counted twice."""
+    windows = {}
+    for r in rows:
+        state = Path(r["state"])
+        windows[r["state"]] = (ed.checkpoint.read_metadata(state)["z"]
+                               if state.exists() else None)
+    kept = []
+    for r in rows:
+        mine = windows[r["state"]]
+        continued = mine is not None and any(
+            o is not r and o["n"] == r["n"] and o["start"] == r["start"]
+            and o["packing_fraction"] == r["packing_fraction"]
+            and windows[o["state"]] is not None
+            and len(windows[o["state"]]) > len(mine)
+            and windows[o["state"]][:len(mine)] == mine for o in rows)
+        if continued:
+            print(f"  {r['task']} ({r['state']}) was continued in another sweep: "
+                  "its longer run is kept")
+        else:
+            kept.append(r)
+    return kept
 
 
 def _color(k: int) -> str:

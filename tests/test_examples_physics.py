@@ -268,3 +268,20 @@ def test_melting_report_compares_with_the_published_curve_of_the_same_size(capsy
     summary = module.report(rows)
     assert summary[128 ** 2]["pulls"] == pytest.approx([2.0, 0.0])
     assert "chi^2 = 4.0 for 2 points" in capsys.readouterr().out
+
+
+def test_a_run_continued_in_another_sweep_is_counted_once(tmp_path):
+    """A run whose windows are the first windows of a longer run at the same point
+    (its checkpoint carried into a sweep of more windows) is dropped; a run with
+    other windows, or at another packing fraction, is kept."""
+    module = load("hard_disk_melting")
+    sim = module.ed.make_gas(16, 0.3, seed=1)
+    rows = []
+    for name, z, eta in (("short", [1.0, 2.0], 0.716), ("long", [1.0, 2.0, 3.0], 0.716),
+                         ("other", [1.0, 2.5], 0.716), ("elsewhere", [1.0, 2.0], 0.712)):
+        state = tmp_path / f"{name}.edmd2d"
+        module.ed.checkpoint.save(sim, state, metadata={"z": z})
+        rows.append({"n": 16, "packing_fraction": eta, "start": "liquid",
+                     "state": str(state), "task": name})
+    kept = module.drop_continued(rows)
+    assert [r["task"] for r in kept] == ["long", "other", "elsewhere"]

@@ -166,7 +166,7 @@ def _cases():
             yield pytest.param(name, id=name)
 
 
-@pytest.mark.parametrize("name", _cases())
+@pytest.mark.parametrize("name", list(_cases()))
 def test_public_docstring_is_complete(name):
     obj, kind = OBJECTS[name]
     assert problems(obj, kind) == []

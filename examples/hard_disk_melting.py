@@ -422,8 +422,8 @@ def figure(rows, out: Path, fluid=()) -> dict:
     for a in (ax, ax_psi):
         a.axvspan(0.700, 0.716, color="0.92", zorder=0)
         a.set_xlabel(r"packing fraction $\eta$")
-    ax.set_xlim(0.688, 0.724)
-    ax.set_ylim(8.95, 9.32)
+    ax.set_xlim(0.688, 0.730)
+    ax.set_ylim(8.94, 9.42)
     ax.set_ylabel(r"$\beta P d^2$")
     ax.legend(frameon=False, fontsize=7, loc="upper left")
     ax_psi.set_ylabel(r"$|\Psi_6|$")

@@ -45,8 +45,10 @@ sweep's directory) and prints it with the loop heights and falls::
 ``--quick`` (the default): 64^2 disks, six packing fractions, liquid starts, 5e4
 collisions per disk each; about 7 minutes on two cores.  ``--full``: 64^2 and 128^2
 disks, 0.690 to 0.724 in steps of 0.002, liquid and crystal starts, 2e4 + 7e4
-collisions per disk (128^2: about half an hour of one core per point; run it in the
-background, it resumes from its checkpoints when started again).  ``--plot`` runs
+collisions per disk, 72 points (on one core of the machine these notes were measured
+on, a point of 1e5 collisions per disk takes 4 minutes at 64^2 and 15 at 128^2, so
+about 10 core-hours in all; run it in the background, it resumes from its
+checkpoints when started again).  ``--plot`` runs
 nothing: it draws the figure from the finished points of one or more sweeps (several
 system sizes, or a sweep still running) and writes their combined points to
 ``OUT.csv`` (the loop heights and falls are printed).  A run continued in a sweep of
@@ -670,8 +672,8 @@ if __name__ == "__main__":
                         help=f"the figure to write (default {default})")
     mode = parser.add_mutually_exclusive_group()
     mode.add_argument("--quick", action="store_true", help="64^2 disks, 6 points (default)")
-    mode.add_argument("--full", action="store_true", help="64^2 and 128^2, 18 points, "
-                      "liquid and crystal starts (hours; resumable)")
+    mode.add_argument("--full", action="store_true", help="64^2 and 128^2, 18 packing "
+                      "fractions, liquid and crystal starts (~10 core-hours; resumable)")
     parser.add_argument("--n", type=int, default=None, help="one system size instead")
     parser.add_argument("--etas", default=None,
                         help="comma-separated packing fractions instead (e.g. 0.708,0.714)")

@@ -175,13 +175,19 @@ def _statistics(x) -> tuple[float, float, float, float]:
             float(x[half:].mean() - x[:half].mean()), float(drift_error))
 
 
+def rho_d2(eta: float) -> float:
+    """``rho d^2 = 4 eta / pi`` for equal disks of diameter ``d``: ``beta P d^2 = Z
+    rho d^2``."""
+    return 4.0 * eta / math.pi
+
+
 def summarize(record: dict, windows_eq: int, eta: float) -> dict:
     """What a point returns, from the windows of its checkpoint's record after the
     first ``windows_eq``: ``Z``, ``beta P d^2 = Z 4 eta / pi``, ``|Psi_6|``, the drifts
     of ``Z`` and of ``|Psi_6|``, each with its error, and the collisions per disk."""
     z, z_err, drift, drift_err = _statistics(record["z"][windows_eq:])
     psi, psi_err, psi_drift, psi_drift_err = _statistics(record["psi6"][windows_eq:])
-    scale = 4.0 * eta / math.pi  # beta P d^2 = Z rho d^2
+    scale = rho_d2(eta)
     return {"Z": z, "Z_error": z_err, "pressure": z * scale, "pressure_error": z_err * scale,
             "psi6": psi, "psi6_error": psi_err, "drift": drift, "drift_error": drift_err,
             "psi6_drift": psi_drift, "psi6_drift_error": psi_drift_err,
@@ -581,7 +587,7 @@ def series(ax, rows, low: float = 0.710, high: float = 0.718):
     etas = sorted({eta for eta, _ in longest})
     for _, r in sorted(longest.items(), key=lambda item: (item[0][1], item[0][0])):
         record = ed.checkpoint.read_metadata(r["state"])
-        p = np.array(record["z"]) * 4.0 * r["packing_fraction"] / math.pi
+        p = np.array(record["z"]) * rho_d2(r["packing_fraction"])
         color = f"C{etas.index(r['packing_fraction'])}"
         ax.plot(record["collisions"], p, "-" if r["start"] == "liquid" else "--",
                 color=color, marker="o" if r["start"] == "liquid" else "^", ms=3, lw=1,
@@ -616,9 +622,8 @@ def equation_of_state(ax, summary, fluid):
                     label=f"edmd2d fluid sweep, N = {n}")
     for k, (n, entry) in enumerate(sorted(summary.items())):
         q = entry["points"]
-        ax.errorbar([p["eta"] for p in q], [p["pressure"] * math.pi / (4 * p["eta"])
-                                            for p in q],
-                    [p["error"] * math.pi / (4 * p["eta"]) for p in q], fmt="o", ms=3,
+        ax.errorbar([p["eta"] for p in q], [p["pressure"] / rho_d2(p["eta"]) for p in q],
+                    [p["error"] / rho_d2(p["eta"]) for p in q], fmt="o", ms=3,
                     color=_color(k), label=f"edmd2d melting sweep, N = {_size(n)}")
     x = np.linspace(0.01, 0.73, 300)
     ax.plot(x, theory.henderson_z(x), "C7-", lw=1, label="Henderson (fluid)")

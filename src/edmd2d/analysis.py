@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 
+from ._sums import dot
 from ._validate import as_count, as_float_array, as_positive_float
 from .geometry import Box
 
@@ -567,7 +568,7 @@ def voronoi_cell_areas(source, box: Box | None = None) -> np.ndarray:
         centred = cell - pos[k]
         order = np.argsort(np.arctan2(centred[:, 1], centred[:, 0]))
         x, y = cell[order, 0], cell[order, 1]
-        areas[k] = 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+        areas[k] = 0.5 * abs(float(dot(x, np.roll(y, -1)) - dot(y, np.roll(x, -1))))
     return areas
 
 

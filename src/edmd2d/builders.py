@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from ._sums import weighted_sum
 from ._validate import as_count, as_positive_float, indices_where, per_disk
 from .geometry import Box
 from .simulation import Simulation
@@ -486,7 +487,7 @@ def _maxwell_boltzmann(rng, mass, temperature, conserved_axes):
     vel = rng.normal(size=(n, 2)) * np.sqrt(1.0 / mass)[:, None]
     dof = 2 * n
     if n >= 2:
-        vel -= (mass @ vel) / mass.sum()
+        vel -= weighted_sum(mass, vel) / mass.sum()
         dof = 2 * n - conserved_axes
     twice_ke = float(np.sum(mass[:, None] * vel**2))
     if twice_ke > 0 and dof > 0:

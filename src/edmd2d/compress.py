@@ -38,6 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import progress as _progress
+from ._sums import weighted_sum
 from ._validate import as_positive_float
 from .measurements import container_area, kinetic_temperature
 from .theory import ETA_CLOSE_PACKED
@@ -224,7 +225,7 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
     sim = system.__copy__()
     sim.set_growth(None)  # (its own growth, if any, ends: radii fixed at their values now)
     vel = sim.velocities
-    sim.set_velocities(vel - masses @ vel / masses.sum())
+    sim.set_velocities(vel - weighted_sum(masses, vel) / masses.sum())
     sim.rescale_temperature(kt)
     growth = rate * math.sqrt(kt / float(masses.mean())) / (2.0 * float(radii.mean()))
     sim.set_growth(growth)  # (refuses physics that cannot grow)

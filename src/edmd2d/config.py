@@ -65,6 +65,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ._sums import dot
+
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
@@ -836,7 +838,7 @@ def _species_labels(radii: np.ndarray, species: list, rng) -> np.ndarray:
 def _segment_distance(points: np.ndarray, wall) -> np.ndarray:
     a, b = np.array(wall.start), np.array(wall.end)
     u = b - a
-    s = np.clip((points - a) @ u / (u @ u), 0.0, 1.0)
+    s = np.clip(dot(points - a, u) / dot(u, u), 0.0, 1.0)
     d = points - a - s[:, None] * u
     return np.hypot(d[:, 0], d[:, 1])
 

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._sums import dot
 from ._validate import as_float_array, as_positive_float, indices_where, per_disk
 from .analysis import _boxsize, _min_image, _simulation_type, _wrap
 from .geometry import Box
@@ -458,7 +459,7 @@ def _segment_distance(p, a, b, box: Box) -> np.ndarray:
               for sy in ((-1, 0, 1) if box.periodic[1] else (0,))]
     for shift in shifts:
         r = q + np.array(shift) - a
-        s = np.clip(r @ u / (u @ u), 0.0, 1.0)
+        s = np.clip(dot(r, u) / dot(u, u), 0.0, 1.0)
         d = r - s[:, None] * u
         best = np.minimum(best, np.hypot(d[:, 0], d[:, 1]))
     return best

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import progress as _progress
+from ._sums import dot, weighted_sum
 from ._validate import as_count, as_positive_float
 
 __all__ = ["Measurement", "measure", "kinetic_temperature", "degrees_of_freedom",
@@ -294,8 +295,8 @@ def kinetic_temperature(sim) -> float:
     vel = sim.velocities
     movable = np.isfinite(mass)
     m, v = mass[movable], vel[movable]
-    twice_ke = float(np.dot(m, np.einsum("ij,ij->i", v, v)))
-    momentum = m @ v
+    twice_ke = float(dot(m, np.einsum("ij,ij->i", v, v)))
+    momentum = weighted_sum(m, v)
     total_mass = float(m.sum())
     cm = sum(float(momentum[a]) ** 2 for a in range(2) if conserved[a]) / total_mass
     return (twice_ke - cm) / dof
@@ -574,8 +575,9 @@ def _axis_temperatures(sim, movable: np.ndarray) -> np.ndarray:
     for a in range(2):
         dof = len(m) - int(conserved[a])
         if dof > 0:
-            p = float(m @ v[:, a])
-            out[a] = (float(m @ v[:, a] ** 2) - (p * p / m.sum() if conserved[a] else 0.0)) / dof
+            p = float(dot(m, v[:, a]))
+            drift = p * p / m.sum() if conserved[a] else 0.0
+            out[a] = (float(dot(m, v[:, a] ** 2)) - drift) / dof
     return out
 
 
@@ -781,7 +783,7 @@ def _any_crossing(vertices: np.ndarray, edges) -> bool:
 def _shoelace(vertices: np.ndarray) -> float:
     """Signed area of a polygon (positive when counterclockwise)."""
     x, y = vertices[:, 0], vertices[:, 1]
-    return 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(np.roll(x, -1), y))
+    return 0.5 * float(dot(x, np.roll(y, -1)) - dot(np.roll(x, -1), y))
 
 
 def _inside_polygon(points: np.ndarray, vertices: np.ndarray) -> np.ndarray:

@@ -19,6 +19,7 @@ from ._engine import layout as _layout
 from ._engine import loop as _loop
 from ._engine import overlap as _overlap
 from ._engine import queue as _queue
+from ._sums import dot, weighted_sum
 from ._validate import as_count, as_float_array, indices_where, per_disk
 from .geometry import Box, Wall
 
@@ -516,15 +517,15 @@ class Simulation:
             for w in self._walls:
                 a, b = np.array(w.start), np.array(w.end)
                 u = b - a
-                s = np.clip((pos[i] - a) @ u / (u @ u), 0.0, 1.0)
+                s = np.clip(dot(pos[i] - a, u) / dot(u, u), 0.0, 1.0)
                 d = pos[i] - (a + s * u)
                 normals.append((d, rad[i]))
             for j in pegs:
                 normals.append((pos[i] - pos[j], rad[i] + rad[j]))
             for d, contact in normals:
                 dist = float(np.hypot(*d))
-                if (dist <= contact * (1.0 + _OVERLAP_TOL) and float(vel[i] @ d) == 0.0
-                        and float(g @ d) < 0.0):
+                if (dist <= contact * (1.0 + _OVERLAP_TOL) and float(dot(vel[i], d)) == 0.0
+                        and float(dot(g, d)) < 0.0):
                     raise ValueError(
                         f"{what}: disk {i} rests on a wall segment or an immovable "
                         "disk with no velocity along the contact while gravity presses "
@@ -1113,7 +1114,7 @@ class Simulation:
         """
         movable = self._invm > 0
         vel = self._velocities()[movable]
-        return float(0.5 * np.dot(self._mass[movable], np.einsum("ij,ij->i", vel, vel)))
+        return float(0.5 * dot(self._mass[movable], np.einsum("ij,ij->i", vel, vel)))
 
     def wall_heat(self) -> np.ndarray:
         """Kinetic energy the heated walls gave to the disks since creation (negative:
@@ -1191,9 +1192,9 @@ class Simulation:
         vel = self.velocities
         movable = np.isfinite(self.masses)
         mass = self.masses[movable]
-        centre = mass @ vel[movable] / mass.sum()
+        centre = weighted_sum(mass, vel[movable]) / mass.sum()
         thermal = vel[movable] - centre
-        twice_thermal = float(mass @ np.einsum("ij,ij->i", thermal, thermal))
+        twice_thermal = float(dot(mass, np.einsum("ij,ij->i", thermal, thermal)))
         # kinetic_temperature counts the centre-of-mass motion along the axes where
         # momentum is not conserved as heat: scaling the velocities about the centre
         # of mass by s gives kT = (M c_free^2 + s^2 sum m |v - c|^2) / f.
@@ -1226,7 +1227,7 @@ class Simulation:
         numpy.ndarray, shape (2,)
         """
         movable = self._invm > 0
-        return self._mass[movable] @ self._velocities()[movable]
+        return weighted_sum(self._mass[movable], self._velocities()[movable])
 
     @property
     def gravity(self) -> np.ndarray:
@@ -1248,7 +1249,7 @@ class Simulation:
         if self._gravity is None:
             return 0.0
         movable = self._invm > 0
-        return float(-self._mass[movable] @ (self._unwrapped()[movable] @ self._gravity))
+        return float(-dot(self._mass[movable], dot(self._unwrapped()[movable], self._gravity)))
 
     def total_energy(self) -> float:
         """``kinetic_energy() + potential_energy()``: constant to rounding for elastic

@@ -238,8 +238,9 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
     step = max(1, round(rescale_every * n))
     c_start = sim.counts.collisions
     record: dict[str, list] = {k: [] for k in ("t", "phi", "z", "kt", "coll")}
-    bar, owned = _progress.bar(progress, total=round((target or CLOSE_PACKING) - phi0, 6),
-                               unit="phi", desc="compress")
+    total = round((target or CLOSE_PACKING) - phi0, 6)
+    bar, owned = _progress.bar(progress, total=total, unit="phi", desc="compress")
+    shown = 0.0
     reached = "jammed"
     sums = (0.0, 0.0)  # the previous interval's virial and integral of kT over time
     try:
@@ -267,8 +268,11 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
                 record[key].append(value)
             sim.rescale_temperature(kt)
             if bar is not None:
-                bar.update(round(phi - (record["phi"][-2] if len(record["phi"]) > 1
-                                        else phi0), 6))
+                # (by what it shows, capped at its total: a merged interval's growth is
+                # not counted twice, and rounding never takes the bar past its end)
+                now = min(phi - phi0, total)
+                bar.update(now - shown)
+                shown = now
                 bar.set_postfix_str(f"Z={z:.4g}", refresh=False)
             if t_end is not None and sim.time >= t_end:
                 reached = "target"

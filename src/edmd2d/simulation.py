@@ -549,9 +549,10 @@ class Simulation:
         )
         if i >= 0:
             what = "its own periodic image" if i == j else f"disk {j}"
+            contact = rad[i] + rad[j]
             raise ValueError(
-                f"positions: disk {i} overlaps {what} (centre distance {dist:.6g} < "
-                f"sum of radii {rad[i] + rad[j]:.6g})"
+                f"positions: disk {i} overlaps {what} (centre distance {dist:.17g} < "
+                f"sum of radii {contact:.17g}, by {1.0 - dist / contact:.3g} of it)"
             )
         if not self._walls:
             return
@@ -561,8 +562,8 @@ class Simulation:
         )
         if i >= 0:
             raise ValueError(
-                f"positions: disk {i} overlaps walls[{w}] (distance {dist:.6g} < "
-                f"radius {rad[i]:.6g})"
+                f"positions: disk {i} overlaps walls[{w}] (distance {dist:.17g} < "
+                f"radius {rad[i]:.17g}, by {1.0 - dist / rad[i]:.3g} of it)"
             )
 
     # ------------------------------------------------------------------ engine calls

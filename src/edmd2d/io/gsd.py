@@ -259,13 +259,24 @@ def read(path, frame: int = -1, *, radius_scale: float = 1.0, **physics):
     centre = np.array([lx / 2.0, ly / 2.0])
     n = int(f.particles.N)
     pos = np.asarray(f.particles.position, np.float64)[:, :2] + centre
-    for axis in range(2):  # (float32 rounding can put a centre a hair outside)
-        if periodic[axis]:
-            pos[:, axis] %= box.size[axis]
-    vel = (np.zeros((n, 2)) if f.particles.velocity is None
-           else np.asarray(f.particles.velocity, np.float64)[:, :2])
     diameter = (np.ones(n) if f.particles.diameter is None
                 else np.asarray(f.particles.diameter, np.float64))
+    radius = 0.5 * diameter * radius_scale
+    for axis in range(2):  # (float32 rounding can put a centre a hair outside)
+        length = box.size[axis]
+        if periodic[axis]:
+            pos[:, axis] %= length
+        else:
+            # A disk touching a box wall is stored a rounding of float32 away from it,
+            # perhaps beyond: put it back, by no more than a few such roundings.
+            rounding = 4.0 * float(np.spacing(np.float32(length)))
+            low, high = radius, length - radius
+            pos[:, axis] = np.where((pos[:, axis] < low) & (pos[:, axis] > low - rounding),
+                                    low, pos[:, axis])
+            pos[:, axis] = np.where((pos[:, axis] > high) & (pos[:, axis] < high + rounding),
+                                    high, pos[:, axis])
+    vel = (np.zeros((n, 2)) if f.particles.velocity is None
+           else np.asarray(f.particles.velocity, np.float64)[:, :2])
     mass = (np.ones(n) if f.particles.mass is None
             else np.asarray(f.particles.mass, np.float64))
     if "edmd2d/immovable" in log:
@@ -279,5 +290,14 @@ def read(path, frame: int = -1, *, radius_scale: float = 1.0, **physics):
     time = float(log["edmd2d/time"][0]) if "edmd2d/time" in log else 0.0
     from ..simulation import Simulation
 
-    return Simulation(pos, vel, 0.5 * diameter * radius_scale, mass, box=box, walls=walls,
-                      time=time, **physics)
+    try:
+        return Simulation(pos, vel, radius, mass, box=box, walls=walls, time=time,
+                          **physics)
+    except ValueError as error:
+        if "overlap" not in str(error):
+            raise
+        raise ValueError(
+            f"frame {frame} of {path}: {error}.  GSD stores float32, so touching disks of "
+            "a dense frame can overlap by about 1e-7 of a diameter when read back: "
+            "read(..., radius_scale=1 - 1e-6) shrinks them by that much (exact restarts "
+            "go through edmd2d.checkpoint)") from None

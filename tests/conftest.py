@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
 
@@ -9,6 +11,28 @@ import edmd2d as ed
 from edmd2d.reference import ReferenceSimulation
 
 BACKENDS = {"engine": ed.Simulation, "reference": ReferenceSimulation}
+
+
+def _seed_offset() -> int:
+    text = os.environ.get("EDMD2D_TEST_SEED_OFFSET", "0")
+    try:
+        return int(text)
+    except ValueError:
+        raise ValueError(f"EDMD2D_TEST_SEED_OFFSET must be an integer, got {text!r}") from None
+
+
+# Every seed of a test's random system goes through seed_of, so that the whole suite can
+# be run on other trajectories: EDMD2D_TEST_SEED_OFFSET=k shifts each seed by 1000 k.  A
+# verdict that hangs on one lucky trajectory (a single seed just past a threshold) then
+# fails under some offset; the suite is meant to pass with offsets 0 to 3.  Tests that
+# pin a number of one trajectory (a bit-identical replay, a documented example) do not
+# use it.
+SEED_OFFSET = _seed_offset()
+
+
+def seed_of(k: int) -> int:
+    """The seed ``k`` of a test, shifted by ``1000 * EDMD2D_TEST_SEED_OFFSET``."""
+    return k + 1000 * SEED_OFFSET
 
 
 @pytest.fixture(params=sorted(BACKENDS))

@@ -13,6 +13,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import seed_of
+
 BENCH = Path(__file__).resolve().parents[1] / "benchmarks"
 MODULES = ("scaling", "peers", "probes", "report", "timing", "ab")
 
@@ -45,7 +47,7 @@ def test_scaling_suite_runs(bench_modules, tmp_path):
 
 def test_reference_comparison_runs(bench_modules):
     peers = importlib.import_module("peers")
-    r = peers.vs_reference(20, 0.3, seconds=0.05, seed=1)
+    r = peers.vs_reference(20, 0.3, seconds=0.05, seed=seed_of(1))
     assert r["reference_collisions"] >= 1
     assert r["ratio"] > 0
 

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
+from conftest import seed_of
 from edmd2d import config
 from edmd2d.cli import main
 
@@ -140,7 +141,7 @@ def test_info_describes_gsd_files_and_checkpoints(tmp_path, capsys):
     assert run(["info", out / "results.json"]) == 2
     assert "neither a GSD file nor an edmd2d checkpoint" in capsys.readouterr().err
     plain = tmp_path / "plain.ckpt"
-    ed.checkpoint.save(ed.make_gas(10, 0.2, seed=1), plain)
+    ed.checkpoint.save(ed.make_gas(10, 0.2, seed=seed_of(1)), plain)
     assert run(["resume", plain]) == 2
     assert "not written by 'edmd2d run'" in capsys.readouterr().err
 
@@ -200,8 +201,8 @@ cont = 80
 
 def test_a_configuration_builds_the_gas_of_make_gas(tmp_path):
     sim, removed = config.build(config.loads(CONFIG.replace("[model]", """[model]
-thermostat = [1.5, 0.2]""")), seed=4)
-    gas = ed.make_gas(200, 0.3, seed=4, thermostat=(1.5, 0.2))
+thermostat = [1.5, 0.2]""")), seed=seed_of(4))
+    gas = ed.make_gas(200, 0.3, seed=seed_of(4), thermostat=(1.5, 0.2))
     assert removed == 0
     assert np.array_equal(sim.positions, gas.positions)
     assert np.array_equal(sim.velocities, gas.velocities)
@@ -224,7 +225,7 @@ start = [3.0, 0.0]
 end = [3.0, 6.0]
 """).replace("[model]", "[model]\nrestitution = [[1.0, 0.9], [0.9, 0.8]]\n"
                         "wall_temperatures = {bottom = 2.0}")
-    sim, removed = config.build(config.loads(text), seed=2)
+    sim, removed = config.build(config.loads(text), seed=seed_of(2))
     assert removed > 0 and len(sim) == 200 - removed and len(sim.walls) == 1
     heavy = sim.species == 1
     assert np.array_equal(sim.masses, np.where(heavy, 3.0, 1.0))

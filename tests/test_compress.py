@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import overlaps
+from conftest import overlaps, seed_of
 from edmd2d import theory
 from edmd2d.compress import CLOSE_PACKING
 
@@ -66,7 +66,7 @@ def test_growing_disks_keep_ratios_rebuild_the_grid_and_never_overlap():
     no overlap, momentum conserved, and the same state whether the run is one call or
     many (the rebuild times do not depend on how the run is cut)."""
     radii = _bidisperse(300)
-    gas = ed.random_gas(300, 0.2, radii=radii, seed=3)
+    gas = ed.random_gas(300, 0.2, radii=radii, seed=seed_of(3))
     one = copy.deepcopy(gas)
     one.set_growth(0.02)
     many = copy.deepcopy(one)
@@ -83,7 +83,7 @@ def test_growing_disks_keep_ratios_rebuild_the_grid_and_never_overlap():
 
 
 def test_growing_simulation_continues_after_pickle_and_checkpoint(tmp_path):
-    sim = ed.random_gas(200, 0.3, seed=4)
+    sim = ed.random_gas(200, 0.3, seed=seed_of(4))
     sim.set_growth(0.01)
     sim.advance(until=7.3)
     path = tmp_path / "grow.edmd2d"
@@ -99,7 +99,7 @@ def test_growing_simulation_continues_after_pickle_and_checkpoint(tmp_path):
 
 
 def test_set_growth_bakes_the_radii_and_stops():
-    sim = ed.random_gas(100, 0.3, seed=5)
+    sim = ed.random_gas(100, 0.3, seed=seed_of(5))
     r0 = sim.radii
     sim.set_growth(0.1)
     sim.advance(until=2.0)
@@ -112,14 +112,14 @@ def test_set_growth_bakes_the_radii_and_stops():
 
 
 def test_growth_refusals_leave_the_simulation_unchanged():
-    sim = ed.random_gas(50, 0.3, seed=6)
+    sim = ed.random_gas(50, 0.3, seed=seed_of(6))
     with pytest.raises(ValueError, match="growth must be >= 0"):
         sim.set_growth(-0.1)
     with pytest.raises(ValueError, match="gravity"):
         ed.Simulation([[5.0, 5.0]], [[0.0, 0.0]], 0.5, box=ed.Box(10.0, 10.0, False),
                       gravity=(0.0, -1.0), growth=0.1)
     with pytest.raises(ValueError, match="restitution"):
-        ed.make_gas(50, 0.3, restitution=0.9, seed=1).set_growth(0.1)
+        ed.make_gas(50, 0.3, restitution=0.9, seed=seed_of(1)).set_growth(0.1)
     sim.set_growth(0.5)
     before = sim.positions
     # The box is 11.2 wide: a disk of radius 0.5 fills it at growth factor 11.2.
@@ -136,7 +136,7 @@ def test_slow_compression_follows_the_equation_of_state():
     (Henderson's own accuracy here, judged by the README's long runs and the Santos
     equation, which differ from it by up to 1%, and the small lag of a compression
     behind equilibrium) plus four standard errors of the bin's mean."""
-    result = ed.compress(ed.random_gas(400, 0.3, seed=1), 0.65, rate=1e-3)
+    result = ed.compress(ed.random_gas(400, 0.3, seed=seed_of(1)), 0.65, rate=1e-3)
     assert result.reached == "target"
     assert result.packing_fraction == 0.65
     assert ed.packing_fraction(result.simulation) == pytest.approx(0.65, rel=1e-13)
@@ -154,21 +154,34 @@ def test_slow_compression_follows_the_equation_of_state():
 
 
 def test_equal_disks_freeze_into_a_crystal_at_close_packing():
-    """Equal disks compressed from a fluid until Z passes 1e6 freeze into a crystal
-    (global |psi_6| above 0.8) whose disks are packed as closely as disks can be: the
-    median disk's Voronoi cell holds it at 0.906 (close packing 0.9069), the upper
-    quartile at close packing to 1e-4; grain boundaries and vacancies keep the whole
-    below it.  (256 disks in a box of the triangular lattice's aspect.)"""
-    gas = ed.random_gas(256, 0.3, aspect=2 / math.sqrt(3), seed=3)
-    result = ed.compress(gas, rate=1e-2, max_pressure=1e6)
-    assert result.reached == "jammed"
-    sim = result.simulation
-    local = ed.local_packing_fractions(sim)
-    assert abs(ed.hexatic_order(sim)[0]) > 0.8
-    assert np.median(local) > 0.905
-    assert abs(np.percentile(local, 75) - CLOSE_PACKING) < 1e-4
-    assert 0.86 < result.packing_fraction < CLOSE_PACKING
-    assert len(overlaps(sim, tol=1e-12)) == 0
+    """Equal disks compressed quickly from a fluid until Z passes 1e6 freeze into a
+    crystal whose disks are packed as closely as disks can be, with grain boundaries
+    and vacancies that vary from run to run (256 disks in a box of the triangular
+    lattice's aspect).  Over 79 seeds: global |psi_6| has median 0.895 and is above 0.5
+    in 92 % of runs (a polycrystal gives less; a fluid of 256 disks about 0.06); the
+    median disk's Voronoi cell holds it at 0.897 +- 0.011 (close packing 0.9069); the
+    upper quartile is at close packing to a median 1e-5 (at most 1e-2); the global
+    packing fraction is 0.880 +- 0.009 (0.859-0.907).  The checks take the median over
+    nine seeds, whose spread (bootstrap over the 79) is 0.03 for |psi_6|, 0.0046 for
+    the median cell, 3.4e-4 for the quartile and 0.0042 for the packing fraction: each
+    bound below lies 6 or more of these spreads from the typical value."""
+    psi6, median, quartile, phi = [], [], [], []
+    for k in range(9):
+        gas = ed.random_gas(256, 0.3, aspect=2 / math.sqrt(3), seed=seed_of(k))
+        result = ed.compress(gas, rate=1e-2, max_pressure=1e6)
+        assert result.reached == "jammed"
+        sim = result.simulation
+        local = ed.local_packing_fractions(sim)
+        psi6.append(abs(ed.hexatic_order(sim)[0]))
+        median.append(np.median(local))
+        quartile.append(abs(np.percentile(local, 75) - CLOSE_PACKING))
+        phi.append(result.packing_fraction)
+        assert 0.80 < result.packing_fraction <= CLOSE_PACKING  # (8 single-run spreads)
+        assert len(overlaps(sim, tol=1e-12)) == 0
+    assert np.median(psi6) > 0.3  # (0.90 typical; fewer than 1 run in 20 is below 0.3)
+    assert np.median(median) > 0.87
+    assert np.median(quartile) < 5e-3
+    assert np.median(phi) > 0.855
 
 
 def _jam(n, rate, seed):
@@ -206,7 +219,7 @@ def test_slow_compression_of_the_bidisperse_mixture_is_isostatic():
 
 
 def test_jammed_before_the_target_says_so_and_returns_the_jammed_state():
-    gas = ed.random_gas(100, 0.4, radii=_bidisperse(100), seed=2)
+    gas = ed.random_gas(100, 0.4, radii=_bidisperse(100), seed=seed_of(2))
     with pytest.warns(UserWarning, match="jammed at packing fraction"):
         result = ed.compress(gas, 0.88, rate=0.1, max_pressure=1e6)
     assert result.jammed and result.reached == "jammed" and result.target == 0.88
@@ -227,7 +240,7 @@ def test_jammed_before_the_target_says_so_and_returns_the_jammed_state():
     (dict(target=0.7, rescale_every=0.0), "rescale_every"),
 ])
 def test_compress_refuses_bad_input_and_changes_nothing(kwargs, match):
-    gas = ed.random_gas(60, 0.3, seed=7)
+    gas = ed.random_gas(60, 0.3, seed=seed_of(7))
     before = pickle.dumps(gas)
     with pytest.raises(ValueError, match=match):
         ed.compress(gas, **kwargs)
@@ -252,11 +265,11 @@ def test_compress_refuses_what_cannot_grow():
     with pytest.raises(ValueError, match="at rest"):
         ed.compress(at_rest, 0.1)
     with pytest.raises(ValueError, match="restitution"):
-        ed.compress(ed.make_gas(50, 0.3, restitution=0.9, seed=1), 0.5)
+        ed.compress(ed.make_gas(50, 0.3, restitution=0.9, seed=seed_of(1)), 0.5)
 
 
 def test_compress_shows_progress(capsys):
-    gas = ed.random_gas(100, 0.3, seed=8)
+    gas = ed.random_gas(100, 0.3, seed=seed_of(8))
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         ed.compress(gas, 0.5, rate=0.05, progress=True)
@@ -301,7 +314,7 @@ def test_the_interval_the_target_cuts_short_joins_the_one_before():
     """No Z of the record comes from a handful of collisions: the last interval, cut
     short by the target, is merged into the one before it (each interval then holds
     at least half of rescale_every N collisions)."""
-    result = ed.compress(ed.random_gas(200, 0.3, seed=9), 0.5, rate=1e-2)
+    result = ed.compress(ed.random_gas(200, 0.3, seed=seed_of(9)), 0.5, rate=1e-2)
     steps = np.diff(np.concatenate([[0], result.collisions]))
     assert steps.min() >= 200 and steps[:-1].max() == 400
     assert np.all(np.diff(result.times) > 0)

@@ -10,6 +10,7 @@ import pytest
 from numba import njit
 
 import edmd2d as ed
+from conftest import seed_of
 from edmd2d._engine import aligned_rows, prefetch
 
 
@@ -19,7 +20,7 @@ def test_state_and_bookkeeping_rows_stay_aligned(n):
     # only if the tables start on those boundaries, also after the memory re-sorting of
     # large systems (forced often here) has replaced them.  The per-disk columns that
     # live in those rows must be views into the tables in use, not into old ones.
-    sim = ed.make_gas(n, 0.5, seed=3)
+    sim = ed.make_gas(n, 0.5, seed=seed_of(3))
     sim._reorder_every = 499
     for _ in range(3):
         assert sim._S.ctypes.data % 64 == 0 and sim._S.strides == (64, 8)
@@ -101,7 +102,7 @@ def test_a_copy_runs_like_the_original(how):
     # arrays of their own), and the tables 64-byte aligned again.  (A shallow copy
     # would share the queue and grid with the original but not the tables: copy.copy
     # copies everything.)
-    sim = ed.make_gas(1500, 0.5, seed=4)
+    sim = ed.make_gas(1500, 0.5, seed=seed_of(4))
     sim._reorder_every = 997
     sim.advance(collisions=1000)
     twin = {"deepcopy": copy.deepcopy, "copy": copy.copy,
@@ -124,7 +125,7 @@ def test_unpickling_state_from_before_the_queue_kept_first():
     # "none given"; the notes of a current pickle are kept.
     from edmd2d._engine import layout, queue
 
-    sim = ed.make_gas(600, 0.5, seed=4)
+    sim = ed.make_gas(600, 0.5, seed=seed_of(4))
     sim._qs[queue.LOOKAHEAD] = 1
     sim.advance(collisions=500)
     state = pickle.loads(pickle.dumps(sim)).__getstate__()  # (arrays of its own)
@@ -169,7 +170,7 @@ def _sum_with_prefetch(a, b):
 
 def test_prefetch_is_only_a_hint():
     # Prefetching any valid row, including the last, changes no value and no array.
-    rng = np.random.default_rng(0)
+    rng = np.random.default_rng(seed_of(0))
     a, b = rng.random((300, 8)), rng.random(300)
     a0, b0 = a.copy(), b.copy()
     assert _sum_with_prefetch(a, b) == pytest.approx(a[:, 0].sum() + b.sum(), rel=1e-15)
@@ -179,7 +180,7 @@ def test_prefetch_is_only_a_hint():
 def test_wall_free_gas_holds_no_per_cell_wall_index():
     # Part of the memory budget: without wall segments there is nothing to look up per
     # cell, and a large system re-sorts without holding the cells' Morton ranks.
-    sim = ed.make_gas(1500, 0.5, seed=4)
+    sim = ed.make_gas(1500, 0.5, seed=seed_of(4))
     assert sim._wstart.shape == (1,) and not hasattr(sim, "_cell_rank")
     sim._reorder_every = 999
     sim.advance(collisions=3000)
@@ -241,7 +242,7 @@ def test_lookahead_changes_no_event_and_no_state(periodic):
 
     def build():
         sim = ed.make_gas(1500, 0.55, radii=np.where(np.arange(1500) % 3, 0.5, 0.65),
-                          periodic=periodic, seed=5)
+                          periodic=periodic, seed=seed_of(5))
         assert sim._qs[queue.LOOKAHEAD] == 0  # off below LOOKAHEAD_MIN_DISKS
         return sim
 
@@ -270,7 +271,7 @@ def test_lookahead_kernel_writes_nothing_but_its_notes(periodic):
     # for the stages it notes as given.
     from edmd2d._engine import lookahead, queue
 
-    sim = ed.make_gas(800, 0.5, periodic=periodic, seed=6)
+    sim = ed.make_gas(800, 0.5, periodic=periodic, seed=seed_of(6))
     sim.advance(collisions=2000)
     arrays = (sim._S, sim._E, sim._qt, sim._tc, sim._gi, sim._head, sim._qhead)
     before = [a.copy() for a in arrays]
@@ -289,7 +290,7 @@ def test_a_new_event_starts_with_no_stage_noted():
     # whatever stages the disk's earlier events had.
     from edmd2d._engine import layout, lookahead, queue
 
-    sim = ed.make_gas(3000, 0.5, seed=9)
+    sim = ed.make_gas(3000, 0.5, seed=seed_of(9))
     sim._qs[queue.LOOKAHEAD] = 1
     far = near = 0
     for _ in range(5):
@@ -316,7 +317,7 @@ def test_heap_staging_gives_each_waiting_event_its_next_stage():
     # first stage it lacks, one per call, and nothing else changes.
     from edmd2d._engine import layout, lookahead
 
-    sim = ed.make_gas(800, 0.5, seed=6)
+    sim = ed.make_gas(800, 0.5, seed=seed_of(6))
     sim.advance(collisions=2000)
     arrays = (sim._S, sim._E, sim._qt, sim._tc, sim._gi, sim._head)
     disks = np.arange(0, 800, 80)  # ten disks (stand-ins for a heap)
@@ -348,7 +349,7 @@ def test_lookahead_on_by_default_at_its_size_changes_nothing():
     from edmd2d._engine import queue
 
     def build():
-        sim = ed.make_gas(queue.LOOKAHEAD_MIN_DISKS, 0.5, seed=7)
+        sim = ed.make_gas(queue.LOOKAHEAD_MIN_DISKS, 0.5, seed=seed_of(7))
         assert sim._qs[queue.LOOKAHEAD] == 1
         return sim
 

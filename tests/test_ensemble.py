@@ -12,6 +12,7 @@ import sys
 import numpy as np
 import pytest
 
+from conftest import seed_of
 from edmd2d import checkpoint, config, ensemble
 from edmd2d import operations as op
 from edmd2d.cli import main
@@ -91,7 +92,7 @@ def test_seeds_are_spawned_in_task_order_and_recorded(tmp_path):
 
 
 def test_a_failing_task_is_reported_and_the_others_finish(tmp_path):
-    result = ensemble.sweep(square_task, [{"x": 2}, {"x": 13}, {"x": 4}], seed=1,
+    result = ensemble.sweep(square_task, [{"x": 2}, {"x": 13}, {"x": 4}], seed=seed_of(1),
                             output=tmp_path, scheduler="serial")
     assert not result.complete and [t["task"] for t in result.failed] == ["p001-r00"]
     rows = table(tmp_path)
@@ -105,7 +106,7 @@ def test_a_failing_task_is_reported_and_the_others_finish(tmp_path):
     assert "square_task" in failed["error"]["traceback"]
 
     # Resumed, the failed task runs again (and fails again); the others are kept.
-    again = ensemble.sweep(square_task, [{"x": 2}, {"x": 13}, {"x": 4}], seed=1,
+    again = ensemble.sweep(square_task, [{"x": 2}, {"x": 13}, {"x": 4}], seed=seed_of(1),
                            output=tmp_path, scheduler="serial")
     assert [t["values"]["calls"] for t in again.tasks if t["values"]] == [1, 1]
     assert (tmp_path / "tasks" / "p001-r00" / "calls").read_text() == "2"
@@ -114,21 +115,22 @@ def test_a_failing_task_is_reported_and_the_others_finish(tmp_path):
 def test_an_interrupted_sweep_resumes_without_running_finished_tasks(tmp_path):
     points = [{"x": 1}, {"x": 2, "stop": True}, {"x": 3}]
     with pytest.raises(KeyboardInterrupt):
-        ensemble.sweep(square_task, points, seed=3, output=tmp_path / "a", scheduler="serial")
+        ensemble.sweep(square_task, points, seed=seed_of(3), output=tmp_path / "a",
+                       scheduler="serial")
     assert [r["task"] for r in table(tmp_path / "a")] == ["p000-r00"]  # (kept on Ctrl-C)
-    result = ensemble.sweep(square_task, points, seed=3, output=tmp_path / "a",
+    result = ensemble.sweep(square_task, points, seed=seed_of(3), output=tmp_path / "a",
                             scheduler="serial")
     assert result.complete
     assert [t["values"]["calls"] for t in result.tasks] == [1, 2, 1]
     # The same numbers as a sweep that was not interrupted.
-    whole = ensemble.sweep(square_task, [{"x": 1}, {"x": 2, "stop": False}, {"x": 3}], seed=3,
-                           output=tmp_path / "b", scheduler="serial")
+    whole = ensemble.sweep(square_task, [{"x": 1}, {"x": 2, "stop": False}, {"x": 3}],
+                           seed=seed_of(3), output=tmp_path / "b", scheduler="serial")
     assert [t["values"]["draw"] for t in result.tasks] == \
            [t["values"]["draw"] for t in whole.tasks]
 
 
 def test_eos_task_continues_from_its_checkpoint_bit_for_bit(tmp_path, monkeypatch):
-    whole = ensemble.sweep(ensemble.eos_task, EOS, replicas=2, seed=5,
+    whole = ensemble.sweep(ensemble.eos_task, EOS, replicas=2, seed=seed_of(5),
                            output=tmp_path / "whole", scheduler="serial")
     assert whole.complete
     # A Ctrl-C right after the checkpoint at the end of the second block of the first
@@ -144,7 +146,7 @@ def test_eos_task_continues_from_its_checkpoint_bit_for_bit(tmp_path, monkeypatc
 
     monkeypatch.setattr(op.Checkpoint, "__call__", interrupted)
     with pytest.raises(KeyboardInterrupt):
-        ensemble.sweep(ensemble.eos_task, EOS, replicas=2, seed=5,
+        ensemble.sweep(ensemble.eos_task, EOS, replicas=2, seed=seed_of(5),
                        output=tmp_path / "cut", scheduler="serial")
     monkeypatch.setattr(op.Checkpoint, "__call__", save)
     assert table(tmp_path / "cut") == []
@@ -152,7 +154,7 @@ def test_eos_task_continues_from_its_checkpoint_bit_for_bit(tmp_path, monkeypatc
     loaded = []
     load = checkpoint.load
     monkeypatch.setattr(checkpoint, "load", lambda path: loaded.append(path) or load(path))
-    resumed = ensemble.sweep(ensemble.eos_task, EOS, replicas=2, seed=5,
+    resumed = ensemble.sweep(ensemble.eos_task, EOS, replicas=2, seed=seed_of(5),
                              output=tmp_path / "cut", scheduler="serial")
     assert [pathlib.Path(p).parent.name for p in loaded] == ["p000-r00"]
     assert resumed.tasks[0]["values"] == whole.tasks[0]["values"]
@@ -184,7 +186,7 @@ def test_eos_task_with_a_random_start_a_mixture_and_collisions(tmp_path):
 
 
 def test_another_sweeps_directory_is_refused(tmp_path):
-    ensemble.sweep(square_task, {"x": [1, 2]}, seed=1, output=tmp_path, scheduler="serial")
+    ensemble.sweep(square_task, {"x": [1, 2]}, seed=seed_of(1), output=tmp_path, scheduler="serial")
     before = text(tmp_path)
     for change, words in [
         ({"parameters": {"x": [1, 3]}}, "parameter set 1 is {'x': 2} there, {'x': 3} here"),
@@ -225,9 +227,9 @@ def test_the_progress_bar_counts_tasks(tmp_path, capsys):
 
 @needs_dask
 def test_a_local_cluster_gives_the_table_of_a_serial_sweep(tmp_path):
-    serial = ensemble.sweep(ensemble.eos_task, EOS, replicas=2, seed=9,
+    serial = ensemble.sweep(ensemble.eos_task, EOS, replicas=2, seed=seed_of(9),
                             output=tmp_path / "serial", scheduler="serial")
-    dask = ensemble.sweep(ensemble.eos_task, EOS, replicas=2, seed=9,
+    dask = ensemble.sweep(ensemble.eos_task, EOS, replicas=2, seed=seed_of(9),
                           output=tmp_path / "dask", workers=2)
     assert text(tmp_path / "dask") == text(tmp_path / "serial")
     assert [t["values"] for t in dask.tasks] == [t["values"] for t in serial.tasks]
@@ -243,7 +245,7 @@ def test_a_cluster_by_address_reports_failures_and_resumes(tmp_path):
     points = {**EOS, "packing_fraction": [0.2, 0.95]}  # (0.95: no lattice holds it)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=":0") as cluster:
-        result = ensemble.sweep(ensemble.eos_task, points, seed=4, output=tmp_path,
+        result = ensemble.sweep(ensemble.eos_task, points, seed=seed_of(4), output=tmp_path,
                                 scheduler=cluster.scheduler_address)
         rows = table(tmp_path)
         assert [r["status"] for r in rows] == ["ok", "failed"]
@@ -252,7 +254,7 @@ def test_a_cluster_by_address_reports_failures_and_resumes(tmp_path):
             result.failed[0]["error"]["traceback"]
         # A client given is used and left open; the finished task is not run again.
         with distributed.Client(cluster) as client:
-            again = ensemble.sweep(ensemble.eos_task, points, seed=4, output=tmp_path,
+            again = ensemble.sweep(ensemble.eos_task, points, seed=seed_of(4), output=tmp_path,
                                    scheduler=client, retry_failed=False)
             assert client.status == "running"
     assert again.tasks == result.tasks

@@ -10,12 +10,13 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
+from conftest import seed_of
 
 
 def gas():
-    base = ed.make_gas(300, 0.4, periodic=(True, False), seed=6)
+    base = ed.make_gas(300, 0.4, periodic=(True, False), seed=seed_of(6))
     return ed.Simulation(base.positions, base.velocities, base.radii, box=base.box,
-                         thermostat=(1.0, 0.05), seed=2)
+                         thermostat=(1.0, 0.05), seed=seed_of(2))
 
 
 def test_every_event_is_streamed_in_order_in_small_batches():

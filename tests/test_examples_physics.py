@@ -10,6 +10,8 @@ import matplotlib
 import numpy as np
 import pytest
 
+from conftest import seed_of
+
 matplotlib.use("Agg")
 
 EXAMPLES = pathlib.Path(__file__).resolve().parents[1] / "examples"
@@ -142,6 +144,7 @@ def test_melting_example_runs_a_small_sweep_and_resumes(tmp_path, capsys):
     module = load("hard_disk_melting")
     module.NS, module.ETAS = (256,), (0.70, 0.712)
     module.EQUILIBRATE, module.MEASURE, module.BLOCKS = 400.0, 1000.0, 5
+    module.SEED = seed_of(module.SEED)
     out = tmp_path / "melt.png"
     rows = module.main(out, tmp_path / "sweep", scheduler="serial")
     assert out.stat().st_size > 10_000
@@ -149,7 +152,11 @@ def test_melting_example_runs_a_small_sweep_and_resumes(tmp_path, capsys):
     for r in rows:
         assert r["pressure"] == pytest.approx(r["Z"] * 4 * r["packing_fraction"] / math.pi)
         assert 0.0 < r["pressure_error"] < 0.5 and 0.0 <= r["psi6"] <= 1.0
-        assert r["collisions_per_disk"] >= 1400
+        # The windows are a time, fixed from the collision rate of a short probe of the
+        # freshly compressed liquid, so the 1400 collisions per disk asked for (plus the
+        # probe's) come out at 1509 +- 72 (mean and spread of 24 runs: seeds 0-11 at
+        # both packing fractions, 1327-1650): the band is 5 spreads wide on each side.
+        assert 1150 < r["collisions_per_disk"] < 1870
         # the drifts: second half of the measured windows less the first half
         record = module.ed.checkpoint.read_metadata(r["state"])
         for key, drift in (("z", r["drift"]), ("psi6", r["psi6_drift"])):
@@ -211,7 +218,7 @@ def test_loop_height_and_the_fall_between_fixed_packing_fractions():
     assert exact["height"] == pytest.approx(0.08) and abs(exact["bias"]) < 1e-6
     assert (exact["eta_max"], exact["eta_min"], exact["bounded"]) == (0.696, 0.706, False)
     assert module.fall(_points(eta, true, 1e-9), (0.704, 0.716))[0] == pytest.approx(0.08)
-    rng = np.random.default_rng(7)
+    rng = np.random.default_rng(seed_of(7))
     falls, fall_errors, heights, biases = [], [], [], []
     for _ in range(400):
         noisy = true + 0.015 * rng.standard_normal(len(eta))
@@ -275,7 +282,7 @@ def test_a_run_continued_in_another_sweep_is_counted_once(tmp_path):
     (its checkpoint carried into a sweep of more windows) is dropped; a run with
     other windows, or at another packing fraction, is kept."""
     module = load("hard_disk_melting")
-    sim = module.ed.make_gas(16, 0.3, seed=1)
+    sim = module.ed.make_gas(16, 0.3, seed=seed_of(1))
     rows = []
     for name, z, eta in (("short", [1.0, 2.0], 0.716), ("long", [1.0, 2.0, 3.0], 0.716),
                          ("other", [1.0, 2.5], 0.716), ("elsewhere", [1.0, 2.0], 0.712)):

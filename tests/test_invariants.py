@@ -7,7 +7,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 import edmd2d as ed
-from conftest import segment_distance
+from conftest import seed_of, segment_distance
 
 
 def assert_no_overlap(sim, tol=1e-9):
@@ -41,7 +41,7 @@ def assert_no_overlap(sim, tol=1e-9):
 
 @pytest.mark.parametrize("phi", [0.3, 0.7])
 def test_periodic_gas_conserves_energy_and_momentum(phi):
-    sim = ed.make_gas(2000, phi, seed=7)
+    sim = ed.make_gas(2000, phi, seed=seed_of(7))
     e0, p0 = sim.kinetic_energy(), sim.momentum()
     scale = float(np.sum(sim.masses * np.hypot(*sim.velocities.T)))
     for _ in range(5):
@@ -57,9 +57,9 @@ def test_periodic_gas_conserves_energy_and_momentum(phi):
 
 
 def test_mixture_in_walled_box_with_obstacles():
-    rng = np.random.default_rng(3)
+    rng = np.random.default_rng(seed_of(3))
     radii = np.where(rng.random(1500) < 0.5, 0.5, 0.7)
-    sim0 = ed.make_gas(1500, 0.45, radii=radii, masses=radii**2, periodic=False, seed=3)
+    sim0 = ed.make_gas(1500, 0.45, radii=radii, masses=radii**2, periodic=False, seed=seed_of(3))
     w, h = sim0.box.width, sim0.box.height
     # Put obstacles in: a divider with a gap and a triangle; drop disks that overlap them.
     walls = [ed.Wall((0.5 * w, 0.0), (0.5 * w, 0.4 * h)),
@@ -82,7 +82,7 @@ def test_mixture_in_walled_box_with_obstacles():
 def test_pegs_and_channel():
     # A channel periodic in x with walls in y, and a row of fixed pegs: energy is
     # conserved, x-momentum is not (the pegs push back), nothing overlaps.
-    base = ed.make_gas(800, 0.35, periodic=(True, False), seed=5)
+    base = ed.make_gas(800, 0.35, periodic=(True, False), seed=seed_of(5))
     p, v = base.positions.copy(), base.velocities.copy()
     mass = np.ones(len(p))
     mass[::40] = np.inf
@@ -96,8 +96,8 @@ def test_pegs_and_channel():
 
 
 def test_one_long_advance_equals_many_short_ones():
-    a = ed.make_gas(500, 0.5, seed=11)
-    b = ed.make_gas(500, 0.5, seed=11)
+    a = ed.make_gas(500, 0.5, seed=seed_of(11))
+    b = ed.make_gas(500, 0.5, seed=seed_of(11))
     a.advance(until=10.0)
     for k in range(1, 301):
         b.advance(until=k / 30)
@@ -110,7 +110,7 @@ def test_one_long_advance_equals_many_short_ones():
 
 
 def test_unwrapped_positions_track_crossings():
-    sim = ed.make_gas(200, 0.2, seed=2)
+    sim = ed.make_gas(200, 0.2, seed=seed_of(2))
     e = sim.kinetic_energy()
     vmax = np.sqrt(2 * e / sim.masses.min())  # no disk can be faster than this
     prev, prev_wrapped = sim.unwrapped_positions, sim.positions
@@ -130,7 +130,7 @@ def test_unwrapped_positions_track_crossings():
 
 
 def test_very_fast_disks_in_a_gas_do_not_tunnel():
-    sim0 = ed.make_gas(400, 0.4, periodic=False, seed=9)
+    sim0 = ed.make_gas(400, 0.4, periodic=False, seed=seed_of(9))
     v = sim0.velocities.copy()
     v[:5] *= 1e6
     walls = [ed.Wall((0.5 * sim0.box.width, 0.0), (0.5 * sim0.box.width, 0.01))]
@@ -145,7 +145,7 @@ def test_interrupt_as_the_engine_returns_keeps_the_clock_consistent(monkeypatch)
     # follow the processed events, or positions would be extrapolated backwards.
     from edmd2d._engine import layout, loop
 
-    sim = ed.make_gas(2000, 0.5, seed=31)
+    sim = ed.make_gas(2000, 0.5, seed=seed_of(31))
     real_run = loop.run
 
     def interrupted_run(*args):

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
+from conftest import seed_of
 from edmd2d import theory
 
 # The module (edmd2d.measurements) and the exported function measure() are distinct.
@@ -115,9 +116,9 @@ def test_one_disk_between_walls_exact():
 
 
 def test_channel_and_obstacles_change_the_degrees_of_freedom():
-    sim = ed.make_gas(50, 0.3, periodic=(True, False), seed=1)
+    sim = ed.make_gas(50, 0.3, periodic=(True, False), seed=seed_of(1))
     assert measure_module.degrees_of_freedom(sim) == (99, (True, False))
-    sim = ed.make_gas(50, 0.3, periodic=False, seed=1)
+    sim = ed.make_gas(50, 0.3, periodic=False, seed=seed_of(1))
     assert measure_module.degrees_of_freedom(sim) == (100, (False, False))
     sim = ed.Simulation([[1, 1], [3, 3], [6, 6]], [[1, 0], [0, 1], [0, 0]], radii=0.5,
                         masses=[1.0, 1.0, np.inf], box=ed.Box(10, 10))
@@ -131,7 +132,7 @@ def test_channel_and_obstacles_change_the_degrees_of_freedom():
 
 def test_centre_of_mass_drift_carries_no_heat():
     # In a periodic box a uniform drift is conserved and is not thermal motion.
-    sim = ed.make_gas(100, 0.2, seed=4)
+    sim = ed.make_gas(100, 0.2, seed=seed_of(4))
     kt = ed.kinetic_temperature(sim)
     sim.set_velocities(sim.velocities + [3.0, -1.0])
     assert ed.kinetic_temperature(sim) == pytest.approx(kt, rel=1e-12)
@@ -160,7 +161,7 @@ def test_measurement_at_rest_and_bad_input():
 
 
 def test_summary_lists_the_values():
-    sim = ed.make_gas(30, 0.2, periodic=False, seed=2)
+    sim = ed.make_gas(30, 0.2, periodic=False, seed=seed_of(2))
     text = sim.measure(duration=5.0).summary()
     assert "compressibility Z" in text and "wall pressure" in text
 
@@ -183,7 +184,7 @@ def run_eos(eta, n, collisions, seed, blocks=10):
 @pytest.fixture(scope="module")
 def eos_runs():
     """N = 1000 disks, ~1e6 collisions at each packing fraction (about 1 s each)."""
-    return {eta: run_eos(eta, 1000, 1_000_000, seed=10 + k) for k, eta in enumerate(ETAS)}
+    return {eta: run_eos(eta, 1000, 1_000_000, seed=seed_of(10) + k) for k, eta in enumerate(ETAS)}
 
 
 def check_eos(m, eta, rel_error_bound):
@@ -239,7 +240,7 @@ def test_mean_free_path_dilute_limit(eos_runs):
 def test_equation_of_state_long(eta):
     # 4096 disks, 1.5e7 collisions: relative errors ~1e-4, the finite-size allowance
     # 2.5e-4 Z; the literature interval is then the limiting factor.
-    m = run_eos(eta, 4096, 15_000_000, seed=100, blocks=20)
+    m = run_eos(eta, 4096, 15_000_000, seed=seed_of(100), blocks=20)
     check_eos(m, eta, 5e-4)
 
 
@@ -276,7 +277,7 @@ def mixture_virial_identity(n, eta, windows, window_collisions, seed):
 
 @pytest.mark.parametrize("eta", [0.3, 0.55])
 def test_mixture_conserves_and_satisfies_the_virial_identity(eta):
-    sim, ratios, e0, p0, kt = mixture_virial_identity(400, eta, 8, 40_000, seed=7)
+    sim, ratios, e0, p0, kt = mixture_virial_identity(400, eta, 8, 40_000, seed=seed_of(7))
     # Conservation to rounding after ~4e5 collisions.
     assert sim.kinetic_energy() == pytest.approx(e0, rel=1e-11)
     assert np.abs(sim.momentum() - p0).max() < 1e-9
@@ -293,7 +294,7 @@ def test_mixture_conserves_and_satisfies_the_virial_identity(eta):
 def test_mixture_virial_identity_long():
     # 2000 disks, 20 windows of 2e5 collisions: the window error drops to ~1e-4 and the
     # 1/N allowance to 5e-4.
-    sim, ratios, *_ = mixture_virial_identity(2000, 0.5, 20, 200_000, seed=17)
+    sim, ratios, *_ = mixture_virial_identity(2000, 0.5, 20, 200_000, seed=seed_of(17))
     err = np.std(ratios, ddof=1) / math.sqrt(len(ratios))
     assert 0 < err < 5e-4
     assert abs(ratios.mean() - 1.0) < K_SIGMA * err + 1.0 / len(sim)
@@ -305,7 +306,7 @@ def test_dilute_mixture_second_virial_coefficient():
     # next term is about 3 eta^2 = 1.2e-3 for equal disks; allow 5 eta^2.
     n, eta = 400, 0.02
     radii = np.where(np.arange(n) % 2 == 0, 0.5, 0.7)
-    sim = ed.make_gas(n, eta, radii=radii, seed=3)
+    sim = ed.make_gas(n, eta, radii=radii, seed=seed_of(3))
     sim.advance(collisions=20 * n)
     m = sim.measure(duration=3000.0, blocks=10)
     sigma = radii[:, None] + radii[None, :]
@@ -323,7 +324,7 @@ def test_closed_box_wall_virial_identity():
     # is (W - 2a) F_x + (H - 2a) F_y = 2 P A exactly in the time average (F: mean force
     # on one wall; the walls act on the centres at distance a).  The pressure side and
     # the wall side come from different accumulators (pair virial vs wall impulses).
-    sim = equilibrated_gas(600, 0.4, seed=5, periodic=False, aspect=1.5)
+    sim = equilibrated_gas(600, 0.4, seed=seed_of(5), periodic=False, aspect=1.5)
     e0 = sim.kinetic_energy()
     m = sim.measure(duration=400.0, blocks=20)
     box, a = sim.box, 0.5
@@ -350,7 +351,7 @@ def test_walled_mixture_is_conserved_and_balanced():
     n = 500
     radii = np.where(np.arange(n) % 2 == 0, 0.5, 0.7)
     masses = np.where(np.arange(n) % 2 == 0, 1.0, 2.0)
-    sim = ed.make_gas(n, 0.45, radii=radii, masses=masses, periodic=False, seed=21)
+    sim = ed.make_gas(n, 0.45, radii=radii, masses=masses, periodic=False, seed=seed_of(21))
     sim.advance(collisions=50 * n)
     e0 = sim.kinetic_energy()
     blocks = [sim.measure(duration=20.0, blocks=1) for _ in range(10)]
@@ -407,12 +408,12 @@ def check_channel(n, frames_per_block, blocks, seed, rel_error_bound):
 
 
 def test_channel_wall_pressure_equals_bulk_pressure():
-    check_channel(800, 20, 10, seed=8, rel_error_bound=0.01)
+    check_channel(800, 20, 10, seed=seed_of(8), rel_error_bound=0.01)
 
 
 @pytest.mark.slow
 def test_channel_wall_pressure_equals_bulk_pressure_long():
-    check_channel(3000, 50, 20, seed=18, rel_error_bound=0.003)
+    check_channel(3000, 50, 20, seed=seed_of(18), rel_error_bound=0.003)
 
 
 # --------------------------------------------------------------------------- relaxation
@@ -438,7 +439,7 @@ def speed_moment_ratio(sim):
 
 def test_relaxation_to_maxwell_boltzmann():
     n = 2000
-    sim = equal_speed_gas(n, 0.25, seed=11)
+    sim = equal_speed_gas(n, 0.25, seed=seed_of(11))
     assert speed_moment_ratio(sim) == pytest.approx(1.0)
     assert ed.maxwell_boltzmann_test(sim).pvalue < 1e-30
     assert np.allclose(sim.momentum(), 0.0, atol=1e-10)
@@ -460,7 +461,7 @@ def test_relaxation_to_maxwell_boltzmann():
 def test_pressure_tensor_diagonal():
     # Periodic fluid: isotropic, and the mean of the diagonal is the scalar pressure
     # (exactly for the virial part; the kinetic part is split per axis).
-    sim = ed.make_gas(1500, 0.5, seed=21)
+    sim = ed.make_gas(1500, 0.5, seed=seed_of(21))
     sim.advance(collisions=60_000)
     m = sim.measure(duration=15.0)
     assert 0.5 * (m.pressure_xx + m.pressure_yy) == pytest.approx(m.pressure, rel=2e-3)
@@ -474,7 +475,7 @@ def test_channel_normal_pressure_equals_wall_pressure():
     # thickness r at the walls, so the virial P_yy over the whole area A = W H relates to
     # it as P_yy A = P_wall W (H - 2r).  Both sides come from the same run; their
     # estimators differ (wall impulses vs collision virial), so allow 1.5%.
-    sim = ed.make_gas(2000, 0.4, periodic=(True, False), aspect=4.0, seed=22)
+    sim = ed.make_gas(2000, 0.4, periodic=(True, False), aspect=4.0, seed=seed_of(22))
     sim.advance(collisions=100_000)
     m = sim.measure(duration=40.0)
     height = sim.box.height

@@ -6,12 +6,13 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
+from conftest import seed_of
 from edmd2d import operations as op
 
 
 def test_time_triggers_fire_at_exact_times_and_change_nothing():
-    sim = ed.make_gas(300, 0.4, seed=2)
-    plain = ed.make_gas(300, 0.4, seed=2)
+    sim = ed.make_gas(300, 0.4, seed=seed_of(2))
+    plain = ed.make_gas(300, 0.4, seed=seed_of(2))
     seen = []
     op.run(sim, until=3.0, operations=[
         op.Callback(lambda s: seen.append(("dt", s.time)), op.Every(dt=0.75)),
@@ -25,7 +26,7 @@ def test_time_triggers_fire_at_exact_times_and_change_nothing():
 
 
 def test_collision_triggers_fire_after_every_kth_collision():
-    sim = ed.make_gas(300, 0.4, seed=2)
+    sim = ed.make_gas(300, 0.4, seed=seed_of(2))
     counts = []
     op.run(sim, collisions=1000, operations=[
         op.Callback(lambda s: counts.append(s.counts.collisions), op.Every(collisions=250))])
@@ -34,7 +35,7 @@ def test_collision_triggers_fire_after_every_kth_collision():
 
 def test_a_gsd_trajectory_and_checkpoints_from_one_run(tmp_path):
     gsd = pytest.importorskip("gsd.hoomd")
-    sim = ed.make_gas(200, 0.3, seed=4)
+    sim = ed.make_gas(200, 0.3, seed=seed_of(4))
     op.run(sim, until=4.0, operations=[
         op.WriteGSD(tmp_path / "run.gsd", op.Every(dt=1.0)),
         op.Checkpoint(tmp_path / "run.ckpt", op.At([2.0])),
@@ -50,7 +51,7 @@ def test_wall_clock_triggers_fire_between_slices(monkeypatch):
     clock = iter(np.arange(0.0, 1e6, 1.0))  # (one "second" per stop)
     monkeypatch.setattr(op._time, "monotonic", lambda: float(next(clock)))
     monkeypatch.setattr(op, "WALL_CLOCK_SLICE", 100)
-    sim = ed.make_gas(200, 0.4, seed=1)
+    sim = ed.make_gas(200, 0.4, seed=seed_of(1))
     fired = []
     op.run(sim, collisions=1000, operations=[
         op.Callback(lambda s: fired.append(s.counts.collisions), op.Every(seconds=2.0))])
@@ -65,9 +66,9 @@ def test_wall_clock_triggers_fire_between_slices(monkeypatch):
     (lambda: op.Every(collisions=0), ValueError, "collisions"),
     (lambda: op.Callback(print, "every second"), TypeError, "Trigger"),
     (lambda: op.Callback("print", op.Every(dt=1.0)), TypeError, "callable"),
-    (lambda: op.run(ed.make_gas(20, 0.2, seed=1), until=1.0, operations=[print]),
+    (lambda: op.run(ed.make_gas(20, 0.2, seed=seed_of(1)), until=1.0, operations=[print]),
      TypeError, r"operations\[0\]"),
-    (lambda: op.run(ed.make_gas(20, 0.2, seed=1)), TypeError, "until="),
+    (lambda: op.run(ed.make_gas(20, 0.2, seed=seed_of(1))), TypeError, "until="),
 ])
 def test_bad_operations_are_refused(make, error, match):
     with pytest.raises(error, match=match):
@@ -89,17 +90,18 @@ def _same_measurement(a, b):
 
 def test_measure_record_and_gsd_in_one_run_equal_separate_runs(tmp_path):
     gsd = pytest.importorskip("gsd.hoomd")
-    combined = ed.make_gas(300, 0.35, seed=7)
+    combined = ed.make_gas(300, 0.35, seed=seed_of(7))
     window = op.Measure(op.Blocks(duration=3.0, blocks=6))
     path = op.RecordTrajectory(op.Every(dt=0.5), include_start=True)
     combined.run(until=3.0, operations=[
         window, path, op.WriteGSD(tmp_path / "one.gsd", op.Every(dt=0.75))])
 
-    _same_measurement(window.result(), ed.make_gas(300, 0.35, seed=7).measure(3.0, blocks=6))
-    times, positions = ed.trajectory(ed.make_gas(300, 0.35, seed=7), 0.5, 7)
+    _same_measurement(window.result(),
+                      ed.make_gas(300, 0.35, seed=seed_of(7)).measure(3.0, blocks=6))
+    times, positions = ed.trajectory(ed.make_gas(300, 0.35, seed=seed_of(7)), 0.5, 7)
     assert np.array_equal(path.times, times)
     assert np.array_equal(path.positions, positions)
-    alone = ed.make_gas(300, 0.35, seed=7)
+    alone = ed.make_gas(300, 0.35, seed=seed_of(7))
     from edmd2d.io import gsd as edgsd
 
     edgsd.record(alone, tmp_path / "alone.gsd", [0.75, 1.5, 2.25, 3.0])
@@ -116,15 +118,15 @@ def test_measure_record_and_gsd_in_one_run_equal_separate_runs(tmp_path):
 
 
 def test_a_measure_goes_on_over_runs_and_through_a_checkpoint(tmp_path):
-    reference = ed.make_gas(200, 0.3, seed=3).measure(4.0, blocks=4)
-    twice = ed.make_gas(200, 0.3, seed=3)
+    reference = ed.make_gas(200, 0.3, seed=seed_of(3)).measure(4.0, blocks=4)
+    twice = ed.make_gas(200, 0.3, seed=seed_of(3))
     window = op.Measure(op.Blocks(4.0, 4))
     twice.run(until=1.5, operations=[window])
     assert window.blocks == 1 and window.result().duration == 1.0
     twice.run(until=4.0, operations=[window])
     _same_measurement(window.result(), reference)
 
-    first = ed.make_gas(200, 0.3, seed=3)
+    first = ed.make_gas(200, 0.3, seed=seed_of(3))
     window = op.Measure(op.Blocks(4.0, 4))
     first.run(until=2.5, operations=[window, op.Checkpoint(
         tmp_path / "c.ckpt", op.At([2.5]), metadata=lambda s: {"m": window.state()})])
@@ -136,29 +138,29 @@ def test_a_measure_goes_on_over_runs_and_through_a_checkpoint(tmp_path):
 
 
 def test_a_window_that_starts_later_and_other_triggers():
-    sim = ed.make_gas(200, 0.3, seed=5)
+    sim = ed.make_gas(200, 0.3, seed=seed_of(5))
     window = op.Measure(op.Blocks(3.0, 3, start=1.0))
     seen = []
     sim.run(until=4.0, operations=[window, op.Callback(lambda s: seen.append(window.blocks),
                                                        op.Blocks(3.0, 3, start=1.0))])
     assert seen == [0, 1, 2, 3]  # (the window opens at 1.0, then a block each)
-    plain = ed.make_gas(200, 0.3, seed=5).advance(until=1.0)
+    plain = ed.make_gas(200, 0.3, seed=seed_of(5)).advance(until=1.0)
     _same_measurement(window.result(), plain.measure(3.0, blocks=3))
 
     by_dt = op.Measure(op.Every(dt=0.5))
-    ed.make_gas(200, 0.3, seed=5).run(until=2.0, operations=[by_dt])
+    ed.make_gas(200, 0.3, seed=seed_of(5)).run(until=2.0, operations=[by_dt])
     m = by_dt.result()
     assert m.blocks == 4 and m.duration == 2.0 and np.isfinite(m.pressure_error)
-    assert m.collisions == ed.make_gas(200, 0.3, seed=5).measure(2.0, blocks=4).collisions
+    assert m.collisions == ed.make_gas(200, 0.3, seed=seed_of(5)).measure(2.0, blocks=4).collisions
     with pytest.raises(ValueError, match="no block"):
         op.Measure(op.Every(dt=1.0)).result()
-    late = ed.make_gas(50, 0.3, seed=1).advance(until=2.0)
+    late = ed.make_gas(50, 0.3, seed=seed_of(1)).advance(until=2.0)
     with pytest.raises(ValueError, match="before the run's start"):
         late.run(until=3.0, operations=[op.Measure(op.Blocks(2.0, 2, start=1.0))])
 
 
 def test_every_with_a_start_keeps_the_grid_of_times():
-    sim = ed.make_gas(50, 0.3, seed=1).advance(until=1.3)
+    sim = ed.make_gas(50, 0.3, seed=seed_of(1)).advance(until=1.3)
     seen = []
     sim.run(until=2.5, operations=[
         op.Callback(lambda s: seen.append(s.time), op.Every(dt=0.5, start=0.0))])
@@ -176,9 +178,10 @@ def test_recorded_frames_animate_as_the_live_animation():
 
     from edmd2d import viz
 
-    live = viz.animate(ed.make_gas(60, 0.3, seed=1), duration=1.0, fps=5, trail=3)
+    live = viz.animate(ed.make_gas(60, 0.3, seed=seed_of(1)), duration=1.0, fps=5, trail=3)
     frames = op.RecordFrames(op.At(live.frame_times[1:]))
-    ed.make_gas(60, 0.3, seed=1).run(until=float(live.frame_times[-1]), operations=[frames])
+    ed.make_gas(60, 0.3, seed=seed_of(1)).run(until=float(live.frame_times[-1]),
+                                              operations=[frames])
     replay = viz.animate_frames(frames, fps=5, trail=3)
     assert np.array_equal(replay.frame_times, live.frame_times)
 

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import overlaps, random_system
+from conftest import overlaps, random_system, seed_of
 from edmd2d.reference import ReferenceSimulation
 
 
@@ -104,7 +104,7 @@ BOX_KINDS = [(True, True), (False, False), (True, False), (False, True)]
 
 @pytest.mark.parametrize("seed", range(24))
 def test_same_events_and_final_state_as_reference(seed):
-    rng = np.random.default_rng(500 + seed)
+    rng = np.random.default_rng(seed_of(500) + seed)
     box = ed.Box(rng.uniform(3.0, 7.0), rng.uniform(3.0, 7.0), periodic=BOX_KINDS[seed % 4])
     walls = ([] if seed % 3 == 0 else
              [ed.Wall((0.5 * box.width, 0.2 * box.height), (0.5 * box.width, 0.7 * box.height))])
@@ -139,7 +139,7 @@ def test_same_events_and_final_state_as_reference(seed):
 
 # ---------------------------------------------------------------- elastic default
 def test_coefficients_of_one_keep_the_elastic_engine():
-    g = ed.make_gas(300, 0.4, seed=3)
+    g = ed.make_gas(300, 0.4, seed=seed_of(3))
     a = ed.Simulation(g.positions, g.velocities, g.radii, box=g.box)
     b = ed.Simulation(g.positions, g.velocities, g.radii, box=g.box, restitution=[[1.0]],
                       wall_restitution=1.0, tc=0.5)
@@ -206,7 +206,7 @@ def test_haffs_law_against_time():
 def _squeezed_row(n=20):
     """A row of disks in a channel just wider than one diameter, converging on its
     middle."""
-    rng = np.random.default_rng(1)
+    rng = np.random.default_rng(seed_of(1))
     x = 10.0 + 2.0 * np.arange(n) + 0.3 * rng.random(n)
     pos = np.c_[x, np.full(n, 0.525)]
     vel = np.c_[np.where(x < x.mean(), 1.0, -1.0) * (1 + 0.1 * rng.random(n)), np.zeros(n)]
@@ -273,7 +273,7 @@ def test_species_must_be_integers():
 
 # ---------------------------------------------------------------- copies, pickles, re-sorts
 def test_copies_and_pickles_continue_bit_identically():
-    g = ed.make_gas(400, 0.3, seed=11)
+    g = ed.make_gas(400, 0.3, seed=seed_of(11))
     sim = ed.Simulation(g.positions, g.velocities, g.radii, box=g.box, restitution=0.7,
                         species=np.arange(400) % 2, wall_restitution=0.9)
     sim.advance(collisions=2000)
@@ -291,7 +291,7 @@ def test_resorted_rows_keep_each_disks_species_and_clock():
     # model's per-disk state along (species, last collision times): frequent re-sorts
     # change no event.
     def run(reorder_every):
-        g = ed.make_gas(1500, 0.4, seed=12)
+        g = ed.make_gas(1500, 0.4, seed=seed_of(12))
         sim = ed.Simulation(g.positions, g.velocities, g.radii, box=g.box,
                             species=np.arange(1500) % 3,
                             restitution=[[0.6, 0.8, 0.9], [0.8, 1.0, 0.7], [0.9, 0.7, 0.5]],
@@ -308,10 +308,11 @@ def test_resorted_rows_keep_each_disks_species_and_clock():
                 for t, k, i, j in sim._recorded_events()]
 
     # (The same events; a re-sort may change which disk of a pair predicts their
-    # contact, and so the last bit of its time.)
+    # contact, and so the last bit of its time, which the following collisions amplify:
+    # up to 7e-12 of the time after 20 000 collisions, over seeds.)
     a, b = pairs(resorted), pairs(plain)
     assert [e[1:] for e in a] == [e[1:] for e in b]
-    np.testing.assert_allclose([e[0] for e in a], [e[0] for e in b], rtol=1e-12)
+    np.testing.assert_allclose([e[0] for e in a], [e[0] for e in b], rtol=1e-9)
     np.testing.assert_allclose(resorted.velocities, plain.velocities, rtol=0, atol=1e-9)
     assert np.array_equal(resorted.species, np.arange(1500) % 3)
     assert resorted.dissipated_energy() == pytest.approx(plain.dissipated_energy(), rel=1e-9)
@@ -340,7 +341,7 @@ def test_no_false_collapse_at_a_late_clock():
     # Simultaneous means equal to a few units of rounding of the clock, however far
     # the clock has run: at t = 1e13 (rounding 0.002, mean free time 0.06) a gas that
     # barely dissipates runs on.
-    g = ed.make_gas(400, 0.7, seed=2)
+    g = ed.make_gas(400, 0.7, seed=seed_of(2))
     g.advance(collisions=4000)
     sim = ed.Simulation(g.positions, g.velocities, g.radii, box=g.box, restitution=0.9999,
                         time=1e13)

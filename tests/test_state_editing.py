@@ -12,14 +12,14 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import overlaps
+from conftest import overlaps, seed_of
 
 
 @pytest.mark.parametrize("name", ["positions", "velocities", "radii", "masses",
                                   "unwrapped_positions", "species", "restitution"])
 def test_copies_are_read_only(name):
     # Editing a copy could never change the simulation: it must fail, not pass silently.
-    sim = ed.make_gas(50, 0.3, seed=1)
+    sim = ed.make_gas(50, 0.3, seed=seed_of(1))
     arr = getattr(sim, name)
     with pytest.raises(ValueError, match="read-only"):
         arr[0] = 1.0
@@ -28,9 +28,9 @@ def test_copies_are_read_only(name):
 
 
 def test_set_positions_then_run_as_if_built_there():
-    sim = ed.make_gas(200, 0.3, seed=2)
+    sim = ed.make_gas(200, 0.3, seed=seed_of(2))
     sim.advance(collisions=500)
-    new = ed.make_gas(200, 0.3, seed=3).positions  # another valid configuration
+    new = ed.make_gas(200, 0.3, seed=seed_of(3)).positions  # another valid configuration
     counts, t = sim.counts, sim.time
     sim.set_positions(new)
     assert np.array_equal(sim.positions, new) and sim.time == t and sim.counts == counts
@@ -48,7 +48,7 @@ def test_positions_setter_walls_and_large_systems():
     # which rows are kept in Z-order (the internal order differs from the user's).
     box = ed.Box(80.0, 80.0, periodic=(True, False))
     wall = ed.Wall((40.0, 10.0), (40.0, 70.0))
-    g = ed.make_gas(1200, 0.2, periodic=(True, False), seed=4)
+    g = ed.make_gas(1200, 0.2, periodic=(True, False), seed=seed_of(4))
     shift = np.array([0.0, 0.5 * (80.0 - g.box.height)])
     pos = g.positions * [80.0 / g.box.width, 1.0] + shift
     keep = np.abs(pos[:, 0] - 40.0) > 1.0
@@ -69,7 +69,7 @@ def test_positions_setter_walls_and_large_systems():
     (lambda p: np.where(np.arange(len(p))[:, None] == 0, [[np.nan, 1.0]], p), "NaN"),
 ])
 def test_bad_positions_leave_the_simulation_unchanged(change, match):
-    sim = ed.make_gas(100, 0.4, seed=5)
+    sim = ed.make_gas(100, 0.4, seed=seed_of(5))
     sim.advance(collisions=300)
     twin = copy.deepcopy(sim)
     with pytest.raises((ValueError, TypeError), match=match):

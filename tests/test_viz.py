@@ -17,6 +17,7 @@ from matplotlib.collections import EllipseCollection  # noqa: E402
 from PIL import Image  # noqa: E402
 
 import edmd2d as ed  # noqa: E402
+from conftest import seed_of
 from edmd2d import viz  # noqa: E402
 
 
@@ -190,7 +191,7 @@ def test_time_text():
 
 @pytest.mark.parametrize("make", ["draw", "animate", "draw_given_axes", "colorbar", "tall"])
 def test_time_label_sits_above_the_box_inside_the_axes(make):
-    sim = ed.make_gas(200, 0.5, seed=3)  # disks right up to the top edge
+    sim = ed.make_gas(200, 0.5, seed=seed_of(3))  # disks right up to the top edge
     if make == "tall":  # too narrow for one line: two
         sim = ed.Simulation([[1.0, 11.5], [1.0, 5.0]], [[1.0, 0.0], [0.0, 0.0]], radii=0.5,
                             box=ed.Box(2.0, 12.0, periodic=False))
@@ -299,7 +300,7 @@ def test_trails_follow_the_disk_and_break_at_periodic_wraps():
 
 
 def test_trails_drawn_as_one_path_per_age_and_rendered_with_breaks():
-    sim = ed.make_gas(30, 0.3, seed=2)
+    sim = ed.make_gas(30, 0.3, seed=seed_of(2))
     anim = viz.animate(sim, duration=1.0, fps=10, trail=4, blit=False, color_by=None,
                        show_time=False)
     for k in range(6):
@@ -571,7 +572,7 @@ def test_a_growing_simulation_is_drawn_at_its_present_size():
     """The picture follows the radii of growing disks from frame to frame."""
     from edmd2d.viz import _Scene
 
-    sim = ed.random_gas(50, 0.3, seed=1)
+    sim = ed.random_gas(50, 0.3, seed=seed_of(1))
     sim.set_growth(0.1)
     scene = _Scene(sim)
     scene.update()

@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
+from conftest import seed_of
 from edmd2d import measurements, theory
 
 # As in test_measure.py: tolerance in block-average standard errors, and the allowance
@@ -161,7 +162,7 @@ def test_polygon_orientation_chooses_the_side():
     # outside.
     ccw = regular_polygon(6, 8.0, (10.0, 10.0))
     for vertices, side in ((ccw, 0), (ccw[::-1], 1)):
-        sim, _ = gas_in_polygon(vertices, 0.2, seed=1)
+        sim, _ = gas_in_polygon(vertices, 0.2, seed=seed_of(1))
         m = sim.measure(duration=20.0)
         assert (m.segment_pressures[:, side] > 0).all()
         assert (m.segment_pressures[:, 1 - side] == 0).all()
@@ -176,7 +177,7 @@ def test_segment_impulses_sum_to_the_total_and_balance_the_momentum():
     # systems: a walled box with a closed triangle (its corners are end points the gas
     # hits from outside), an open polyline and a thin wall; a periodic box with a wall
     # that crosses the periodic edge (hit through its image as well).
-    g = ed.make_gas(150, 0.25, periodic=False, seed=3)
+    g = ed.make_gas(150, 0.25, periodic=False, seed=seed_of(3))
     w, h = g.box.width, g.box.height
     walls = (ed.Wall.polygon([(0.45 * w, 0.45 * h), (0.6 * w, 0.45 * h), (0.5 * w, 0.6 * h)])
              + ed.Wall.polygon([(0.1 * w, 0.8 * h), (0.2 * w, 0.9 * h), (0.3 * w, 0.8 * h)],
@@ -191,7 +192,7 @@ def test_segment_impulses_sum_to_the_total_and_balance_the_momentum():
     keep = clear & ~inside
     walled = ed.Simulation(g.positions[keep], g.velocities[keep], A, box=g.box, walls=walls)
 
-    g = ed.make_gas(150, 0.25, seed=4)
+    g = ed.make_gas(150, 0.25, seed=seed_of(4))
     w, h = g.box.width, g.box.height
     walls = [ed.Wall((0.0, 0.5 * h), (0.3 * w, 0.5 * h)), ed.Wall((0.8 * w, 0.5 * h), (w, 0.5 * h))]
     keep = np.abs(g.positions[:, 1] - 0.5 * h) > A + 0.01
@@ -230,7 +231,7 @@ def test_virial_theorem_with_the_walls_of_a_polygon_is_exact():
     pentagon = [(1.0, 1.0), (15.0, 2.0), (18.0, 11.0), (9.0, 17.0), (2.0, 12.0)]
     hexagon = regular_polygon(6, 9.0, (10.0, 10.0))[::-1]
     for vertices in (pentagon, hexagon):
-        sim, _ = gas_in_polygon(vertices, 0.3, seed=5, pieces=2)
+        sim, _ = gas_in_polygon(vertices, 0.3, seed=seed_of(5), pieces=2)
         sim.advance(collisions=5000)
         acc0, g0, t0 = sim._accumulators(), virial_of_positions(sim), sim.time
         kinetic = sim.kinetic_energy()
@@ -255,7 +256,7 @@ def test_virial_theorem_with_the_walls_of_a_polygon_is_exact():
 def test_pickles_from_before_the_per_segment_tallies_load():
     # A pickle without the per-segment tallies loads with them at zero (the total over
     # all segments is kept) and runs on exactly like the original.
-    sim, _ = gas_in_polygon(regular_polygon(8, 8.0, (10.0, 10.0)), 0.3, seed=6)
+    sim, _ = gas_in_polygon(regular_polygon(8, 8.0, (10.0, 10.0)), 0.3, seed=seed_of(6))
     sim.advance(collisions=2000)
     state = pickle.loads(pickle.dumps(sim)).__getstate__()
     del state["_wacc"]
@@ -278,7 +279,7 @@ def test_pickles_from_before_the_per_segment_tallies_load():
 
 
 def test_no_segments_no_segment_values():
-    m = ed.make_gas(60, 0.3, seed=2).measure(duration=5.0)
+    m = ed.make_gas(60, 0.3, seed=seed_of(2)).measure(duration=5.0)
     assert m.segment_forces.shape == (0, 2) and m.segment_pressures.shape == (0, 2)
     assert m.segment_contacts.shape == (0,) and math.isnan(m.segment_pressure)
     assert "segment" not in m.summary() and m.area_source == "box"
@@ -343,7 +344,7 @@ def test_container_area_falls_back_to_the_box():
 
 
 def test_measure_takes_the_area():
-    sim, v = gas_in_polygon(regular_polygon(8, 8.0, (10.0, 10.0)), 0.3, seed=7)
+    sim, v = gas_in_polygon(regular_polygon(8, 8.0, (10.0, 10.0)), 0.3, seed=seed_of(7))
     sim.advance(collisions=3000)
     twin = pickle.loads(pickle.dumps(sim))
     m = sim.measure(duration=10.0)
@@ -364,7 +365,7 @@ def test_measure_takes_the_area():
 def test_summary_of_a_gas_in_a_polygon_container():
     # The report that motivated the per-segment tallies: the box walls are never
     # touched, so the summary gives the segments' pressure, not "wall pressure 0 +- 0".
-    sim, _ = gas_in_polygon(regular_polygon(8, 8.0, (10.0, 10.0)), 0.3, seed=8)
+    sim, _ = gas_in_polygon(regular_polygon(8, 8.0, (10.0, 10.0)), 0.3, seed=seed_of(8))
     m = sim.measure(duration=20.0)
     text = m.summary()
     assert "wall pressure" not in text
@@ -396,7 +397,7 @@ def test_gas_in_an_octagon_reproduces_the_equation_of_state():
     # the box's area it would be 50% off.
     k, rc = 8, 25.0
     vertices = regular_polygon(k, rc, (0.0, 0.0))
-    sim, v = gas_in_polygon(vertices, 0.25, seed=11, pieces=3, box_margin=7.0)
+    sim, v = gas_in_polygon(vertices, 0.25, seed=seed_of(11), pieces=3, box_margin=7.0)
     n = len(sim)
     centre = v.mean(axis=0)
     r_in = rc * math.cos(math.pi / k)

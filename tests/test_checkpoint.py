@@ -3,8 +3,10 @@ bad files are refused with a clear error; an interrupted write loses nothing."""
 
 from __future__ import annotations
 
+import importlib.util
 import json
 import os
+import stat
 import subprocess
 import sys
 import zipfile
@@ -80,7 +82,9 @@ def test_an_interrupted_write_keeps_the_previous_checkpoint(tmp_path, monkeypatc
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(checkpoint.os, "replace", interrupted)
+    from edmd2d import _atomic
+
+    monkeypatch.setattr(_atomic.os, "replace", interrupted)
     with pytest.raises(KeyboardInterrupt):
         checkpoint.save(sim.advance(until=5.0), path)
     assert path.read_bytes() == before
@@ -168,3 +172,24 @@ def _saved(sim, tmp_path):
     path = tmp_path / "saved"
     checkpoint.save(sim, path)
     return path
+
+
+def test_files_are_written_with_the_mode_the_umask_gives(tmp_path):
+    """Checkpoints (through a temporary file renamed over the target) and GSD files
+    (which the gsd library creates with mode 0640) get 0666 less the umask, as a file
+    opened by the user's own program would."""
+    sim = ed.make_gas(20, 0.3, seed=seed_of(1))
+    old = os.umask(0o027)
+    try:
+        for mask, mode in ((0o022, 0o644), (0o077, 0o600), (0o002, 0o664)):
+            os.umask(mask)
+            ed.checkpoint.save(sim, tmp_path / "state.edmd2d")
+            assert stat.S_IMODE(os.stat(tmp_path / "state.edmd2d").st_mode) == mode
+            if importlib.util.find_spec("gsd") is not None:
+                from edmd2d.io import gsd
+
+                gsd.record(sim, tmp_path / "run.gsd", [sim.time])
+                assert stat.S_IMODE(os.stat(tmp_path / "run.gsd").st_mode) == mode
+    finally:
+        os.umask(old)
+    assert list(tmp_path.glob(".*")) == []  # (no temporary file left behind)

@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import seed_of
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 MODULES = ["edmd2d", "edmd2d.geometry", "edmd2d.simulation", "edmd2d.builders",

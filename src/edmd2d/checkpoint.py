@@ -38,14 +38,13 @@ from __future__ import annotations
 
 import io
 import json
-import os
-import tempfile
 import zipfile
 from pathlib import Path
 
 import numpy as np
 
 from . import models as _models
+from ._atomic import replacing
 from .geometry import Box, Wall
 
 __all__ = ["FORMAT", "VERSION", "save", "load", "read_metadata"]
@@ -98,24 +97,12 @@ def save(sim, path, *, metadata: dict | None = None) -> None:
         except (TypeError, ValueError) as exc:
             raise TypeError(f"metadata must hold only what JSON can store ({exc})") from None
         header["metadata"] = metadata
-    path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            with zipfile.ZipFile(f, "w", zipfile.ZIP_STORED) as z:
-                z.writestr(_HEADER, json.dumps(header, indent=1))
-                for name, arr in arrays.items():
-                    buf = io.BytesIO()
-                    np.lib.format.write_array(buf, np.ascontiguousarray(arr),
-                                              allow_pickle=False)
-                    z.writestr(name + ".npy", buf.getvalue())
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    with replacing(path) as f, zipfile.ZipFile(f, "w", zipfile.ZIP_STORED) as z:
+        z.writestr(_HEADER, json.dumps(header, indent=1))
+        for name, arr in arrays.items():
+            buf = io.BytesIO()
+            np.lib.format.write_array(buf, np.ascontiguousarray(arr), allow_pickle=False)
+            z.writestr(name + ".npy", buf.getvalue())
 
 
 def load(path):

@@ -44,7 +44,6 @@ import os
 import secrets
 import shutil
 import sys
-import tempfile
 import textwrap
 import time as _time
 import zipfile
@@ -52,7 +51,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__
+from . import __version__, _atomic
 from . import checkpoint as _checkpoint
 from . import config as _config
 from . import operations as _op
@@ -511,10 +510,7 @@ def _plain(value):
 def _write_json(path: Path, data: dict) -> None:
     """Write ``data`` as strict JSON (``null`` for values that are not finite), through
     a temporary file renamed over ``path``: a reader never sees half a file."""
-    text = json.dumps(_plain_tree(data), indent=1, allow_nan=False)
-    tmp = path.with_name(f".{path.name}.tmp")
-    tmp.write_text(text + "\n", encoding="utf-8")
-    os.replace(tmp, path)
+    _atomic.write_text(path, json.dumps(_plain_tree(data), indent=1, allow_nan=False) + "\n")
 
 
 def _plain_tree(value):
@@ -547,17 +543,11 @@ def _continue_gsd(source: Path, target: Path, time: float) -> None:
 
     if not source.exists():
         return
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-    os.close(fd)
-    try:
-        with gsd.hoomd.open(str(source), "r") as old, gsd.hoomd.open(tmp, "w") as new:
-            for frame in old:
-                if float(frame.log["edmd2d/time"][0]) <= time:
-                    new.append(frame)
-        os.replace(tmp, target)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+    with (_atomic.replacing_path(target) as tmp, gsd.hoomd.open(str(source), "r") as old,
+          gsd.hoomd.open(tmp, "w") as new):
+        for frame in old:
+            if float(frame.log["edmd2d/time"][0]) <= time:
+                new.append(frame)
 
 
 def _read_checkpoint_metadata(path: Path) -> dict:

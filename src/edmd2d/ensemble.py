@@ -76,6 +76,8 @@ from pathlib import Path
 
 import numpy as np
 
+from . import _atomic
+
 __all__ = ["sweep", "grid", "load", "eos_task", "warm", "SweepResult", "FORMAT",
            "VERSION", "CSV_FILE", "JSON_FILE", "TASKS_DIR"]
 
@@ -667,9 +669,7 @@ def _cell(value) -> str:
 def _replace(path: Path, text: str) -> None:
     """Write ``text`` to ``path`` through a temporary file renamed over it: a reader,
     or a sweep that resumes after a crash, never sees half a file."""
-    tmp = path.with_name(f".{path.name}.tmp")
-    tmp.write_text(text, encoding="utf-8")
-    os.replace(tmp, path)
+    _atomic.write_text(path, text)
 
 
 def _json_default(value):

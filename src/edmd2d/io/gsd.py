@@ -37,11 +37,13 @@ than :class:`~edmd2d.Simulation` accepts (``1e-9``).  :func:`read` offers
 from __future__ import annotations
 
 import math
+import os
 import string
 
 import numpy as np
 
 from .. import measurements as _measurements
+from .._atomic import umask_mode
 from ..geometry import Box, Wall
 
 __all__ = ["Writer", "record", "read"]
@@ -89,7 +91,10 @@ class Writer:
     def __init__(self, path, mode: str = "w") -> None:
         if mode not in ("w", "a"):
             raise ValueError(f"mode must be 'w' or 'a', got {mode!r}")
+        new = mode == "w" or not os.path.exists(path)
         self._file = _gsd_hoomd().open(str(path), mode)
+        if new:  # (the gsd library creates files with mode 0640 whatever the umask)
+            os.chmod(path, umask_mode())
         self._start = None  # (time, accumulators) at the first frame written
         self._temperatures: list[float] = []
 

@@ -629,8 +629,9 @@ def _rows(tasks: list) -> tuple[list[str], list[dict]]:
         names.update(dict.fromkeys(t["parameters"]))
         values.update(dict.fromkeys(t["values"] or {}))
     fixed = set(_HEAD) | set(names) | set(_MIDDLE)
-    # (A value named like a parameter or a fixed column gets a prefix in the table.)
-    shown = {v: (f"value_{v}" if v in fixed else v) for v in values}
+    # (A value named like a parameter or a fixed column, such as the temperature a
+    # run measured beside the temperature it was given, is "measured_" in the table.)
+    shown = {v: (f"measured_{v}" if v in fixed else v) for v in values}
     columns = [*_HEAD, *names, *_MIDDLE, *shown.values()]
     rows = []
     for t in tasks:

@@ -3,7 +3,7 @@
 :class:`Writer` appends frames of a :class:`~edmd2d.Simulation` to a GSD file;
 :func:`record` runs a simulation and writes a frame at each of a list of times;
 :func:`read` builds a Simulation from a frame (one written here, or by another
-program).  Needs the ``gsd`` package (``pip install edmd2d[io]``).
+program).  Uses the ``gsd`` package, a dependency of edmd2d.
 
 What a frame holds (HOOMD conventions):
 
@@ -52,9 +52,9 @@ __all__ = ["Writer", "record", "read"]
 def _gsd_hoomd():
     try:
         import gsd.hoomd
-    except ImportError:  # pragma: no cover - exercised only without the extra
-        raise ImportError("GSD files need the gsd package: pip install 'edmd2d[io]' "
-                          "(or pip install gsd)") from None
+    except ImportError:  # pragma: no cover - gsd is a dependency
+        raise ImportError("GSD files need the gsd package, a dependency of edmd2d that "
+                          "is missing here: pip install gsd") from None
     return gsd.hoomd
 
 

@@ -533,7 +533,8 @@ def _need_gsd(what: str) -> None:
     try:
         import gsd.hoomd  # noqa: F401
     except ImportError:
-        raise UserError(f"{what} needs the gsd package (a dependency of edmd2d): pip install gsd") from None
+        raise UserError(f"{what} needs the gsd package (a dependency of edmd2d): "
+                        "pip install gsd") from None
 
 
 def _continue_gsd(source: Path, target: Path, time: float) -> None:

@@ -186,7 +186,7 @@ def test_eos_task_with_a_random_start_a_mixture_and_collisions(tmp_path):
 
 
 def test_another_sweeps_directory_is_refused(tmp_path):
-    ensemble.sweep(square_task, {"x": [1, 2]}, seed=seed_of(1), output=tmp_path, scheduler="serial")
+    ensemble.sweep(square_task, {"x": [1, 2]}, seed=1, output=tmp_path, scheduler="serial")
     before = text(tmp_path)
     for change, words in [
         ({"parameters": {"x": [1, 3]}}, "parameter set 1 is {'x': 2} there, {'x': 3} here"),

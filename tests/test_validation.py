@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -53,11 +54,22 @@ def make(**overrides):
         (dict(box=ed.Box(0.8, 10.0, periodic=True), positions=[[0.4, 2.0]],
               velocities=[[0.0, 0.0]]), ValueError, "smaller than the largest disk diameter"),
         (dict(cell_size=0.5), ValueError, "cell_size must be at least"),
+        # (1 / m overflows for a subnormal mass, and the velocities would become NaN)
+        (dict(masses=[1e-310, 1.0, 1.0]), ValueError, r"masses must be at least .* \[0\]"),
+        (dict(positions=np.array(POS) + 0j), TypeError, "positions must be real"),
+        (dict(positions=np.ones((3, 2), bool)), TypeError, "positions must be numbers, got "
+         "booleans"),
+        (dict(radii=[True, True, True]), TypeError, "radii must be numbers, got booleans"),
+        (dict(masses=np.True_), TypeError, "masses must be numbers, got booleans"),
+        (dict(thermostat=(1.0, 1.0), seed="seven"), TypeError, "seed must be None, an int"),
+        (dict(thermostat=(1.0, 1.0), seed=-1), ValueError, "seed must be None, an int"),
     ],
 )
 def test_constructor_rejects(overrides, error, pattern):
-    with pytest.raises(error, match=pattern):
-        make(**overrides)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # (a clear error, and no warning before it)
+        with pytest.raises(error, match=pattern):
+            make(**overrides)
 
 
 def test_overlap_with_periodic_image_is_found():
@@ -79,7 +91,8 @@ def test_touching_disks_are_accepted():
     [((0.0, 1.0), "Box width must be > 0"), ((1.0, -2.0), "Box height must be > 0"),
      ((1.0, np.inf), "Box height must be finite"),
      ((1.0, 1.0, "yes"), "periodic must be a bool or a pair"),
-     ((1.0, 1.0, (True,)), "pair of bools")],
+     ((1.0, 1.0, (True,)), "pair of bools"),
+     ((1e200, 1.0), "Box width must be at most 1e[+]150")],
 )
 def test_bad_box(box_args, pattern):
     with pytest.raises((TypeError, ValueError), match=pattern):
@@ -102,6 +115,7 @@ def test_degenerate_wall():
         (dict(collisions=-1), ValueError, "collisions must be >= 0"),
         (dict(collisions=2.5), TypeError, "collisions must be an integer"),
         (dict(until="soon"), TypeError, "until must be numeric"),
+        (dict(collisions=2 ** 70), ValueError, "collisions must be at most 2[*][*]63 - 1"),
     ],
 )
 def test_bad_advance_leaves_state_unchanged(kwargs, error, pattern):
@@ -171,3 +185,47 @@ def test_scalar_and_array_radii_masses():
     assert sim.radii.tolist() == [0.5, 0.6, 0.7]
     assert np.isinf(sim.masses).all()
     assert sim.kinetic_energy() == 0.0
+
+
+@pytest.mark.parametrize("case", ["ring", "three", "filled", "peg", "segments"])
+def test_wedged_elastic_disks_end_in_an_error_not_a_hang(case):
+    """Elastic disks that touch with no room to move collide forever at one instant:
+    the run stops with an error naming them after a bounded number of events that took
+    no time (2^20 here, well under a second), the state stays usable, and velocities
+    that free them let it go on."""
+    periodic, box = ed.Box(2.0, 5.0, periodic=True), ed.Box(5.0, 5.0, periodic=False)
+    systems = {  # positions, velocities, masses, box, walls
+        "ring": ([[0.5, 2.5], [1.5, 2.5]], [[1.0, 0.0], [0.0, 0.0]], 1.0, periodic, []),
+        "three": ([[0.5, 1.5], [1.5, 1.5], [2.5, 1.5]], [[1.0, 0.0], [0.0, 0.0], [0.0, 0.0]],
+                  1.0, ed.Box(3.0, 3.0), []),
+        "filled": ([[0.5, 2.5], [1.5, 2.5]], [[1.0, 0.3], [0.0, 0.0]], 1.0,
+                   ed.Box(2.0, 5.0, periodic=False), []),
+        "peg": ([[0.5, 2.5], [1.5, 2.5]], [[1.0, 0.0], [0.0, 0.0]], [1.0, np.inf], box, []),
+        "segments": ([[2.5, 2.5]], [[1.0, 0.0]], 1.0, box,
+                     [ed.Wall((2.0, 1.0), (2.0, 4.0)), ed.Wall((3.0, 1.0), (3.0, 4.0))]),
+    }
+    pos, vel, mass, where, walls = systems[case]
+    sim = ed.Simulation(pos, vel, 0.5, mass, box=where, walls=walls)
+    with pytest.raises(RuntimeError, match=r"disks wedged at t=0.0: disk \d+ and "
+                       r"(disk \d+|walls\[[01]\]|the box wall .*) took part in 1048576 events"):
+        sim.advance(until=1.0)
+    assert sim.time == 0.0 and sim.counts.events >= 1 << 20
+    with pytest.raises(RuntimeError, match="wedged"):  # (collisions= too: it counts
+        sim.advance(collisions=10 ** 7)  # disk-disk collisions, which may never come)
+    sim.set_velocities(np.zeros((len(pos), 2)))
+    assert sim.advance(until=1.0).time == 1.0
+
+
+def test_runs_the_clock_or_the_arithmetic_cannot_follow_are_refused():
+    """A thermostat that redraws faster than the clock resolves, and speeds whose
+    product with the box's size would overflow a contact time's discriminant, are
+    refused before the run, leaving the simulation as it was."""
+    sim = ed.Simulation(POS, VEL, 0.5, box=BOX, thermostat=(1.0, 1e17), seed=1)
+    with pytest.raises(ValueError, match="thermostat redraws a velocity every .* cannot "
+                       "resolve"):
+        sim.advance(until=1.0)
+    assert sim.time == 0.0
+    sim = ed.Simulation([[1e140, 1e140]], [[1e12, 0.0]], 1e139, box=ed.Box(1e141, 1e141))
+    with pytest.raises(ValueError, match="must be at most 1e[+]150"):
+        sim.advance(until=1.0)
+    assert sim.time == 0.0

@@ -13,9 +13,11 @@ import numbers
 
 import numpy as np
 
-__all__ = ["as_float_array", "per_disk", "as_count", "as_positive_float", "indices_where"]
+__all__ = ["as_float_array", "per_disk", "as_count", "as_positive_float", "indices_where",
+           "as_generator"]
 
 _MAX_LISTED = 10
+_MAX_COUNT = int(np.iinfo(np.int64).max)
 
 
 def indices_where(mask: np.ndarray) -> str:
@@ -40,10 +42,19 @@ def as_float_array(
     """
     if value is None:
         raise TypeError(f"{name} is required, got None")
-    if isinstance(value, (str, bytes)) or np.asarray(value).dtype.kind in "USa":
+    try:
+        kind = np.asarray(value).dtype.kind
+    except (TypeError, ValueError):  # (ragged nesting: the conversion below says so)
+        kind = "O"
+    if isinstance(value, (str, bytes)) or kind in "USa":
         # (numpy would parse strings nested in lists; refused everywhere alike)
         shown = value if isinstance(value, (str, bytes)) else np.asarray(value)
         raise TypeError(f"{name} must be numeric, got strings: {shown!r}")
+    # (checked before the conversion, which would warn that it drops imaginary parts)
+    if kind == "c" or isinstance(value, complex):
+        raise TypeError(f"{name} must be real, got complex values")
+    if kind == "b" or isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be numbers, got booleans: {value!r}")
     try:
         arr = np.array(value, dtype=np.float64, order="C", copy=True)
     except (TypeError, ValueError) as exc:
@@ -51,8 +62,6 @@ def as_float_array(
             f"{name} must be an array of real numbers with shape {_fmt(shape)}; "
             f"could not convert {type(value).__name__}: {exc}"
         ) from None
-    if np.iscomplexobj(np.asarray(value)):
-        raise TypeError(f"{name} must be real, got complex values")
     if arr.ndim != len(shape) or any(s is not None and s != a for s, a in zip(shape, arr.shape)):
         raise ValueError(f"{name} must have shape {_fmt(shape)}, got shape {arr.shape}")
     bad = np.isnan(arr) if allow_inf else ~np.isfinite(arr)
@@ -85,6 +94,8 @@ def as_count(name: str, value, minimum: int = 0) -> int:
     value = int(value)
     if value < minimum:
         raise ValueError(f"{name} must be >= {minimum}, got {value}")
+    if value > _MAX_COUNT:
+        raise ValueError(f"{name} must be at most 2**63 - 1 (a 64-bit count), got {value}")
     return value
 
 
@@ -104,3 +115,12 @@ def as_positive_float(name: str, value, *, allow_zero: bool = False) -> float:
 def _fmt(shape: tuple) -> str:
     parts = ["N" if s is None else str(s) for s in shape]
     return "(" + ", ".join(parts) + ("," if len(parts) == 1 else "") + ")"
+
+
+def as_generator(name: str, seed) -> np.random.Generator:
+    """``numpy.random.default_rng(seed)``, whose errors name the argument."""
+    try:
+        return np.random.default_rng(seed)
+    except (TypeError, ValueError) as exc:
+        raise type(exc)(f"{name} must be None, an int >= 0, a numpy.random.SeedSequence or "
+                        f"a numpy.random.Generator, got {seed!r} ({exc})") from None

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from ._sums import weighted_sum
-from ._validate import as_count, as_positive_float, indices_where, per_disk
+from ._validate import as_count, as_generator, as_positive_float, indices_where, per_disk
 from .geometry import Box
 from .simulation import Simulation
 
@@ -119,7 +119,7 @@ def make_gas(
     mass = per_disk("masses", masses, n)
     if (mass <= 0).any():
         raise ValueError(f"masses must be > 0; disks {indices_where(mass <= 0)} are not")
-    rng = np.random.default_rng(seed)
+    rng = as_generator("seed", seed)
 
     box = _box_for(float(np.pi * np.sum(rad**2)), phi, aspect, periodic)
     dmax = 2.0 * float(rad.max())
@@ -278,7 +278,7 @@ def random_packing(
     aspect = as_positive_float("aspect", aspect)
     max_attempts = as_count("max_attempts", max_attempts, minimum=1)
     rad = _disk_radii(n, radius, radii)
-    rng = np.random.default_rng(seed)
+    rng = as_generator("seed", seed)
     box = _box_for(float(np.pi * np.sum(rad**2)), phi, aspect, periodic)
 
     rmax = float(rad.max())
@@ -361,7 +361,7 @@ def random_gas(
     1.0
     """
     temperature = as_positive_float("temperature", temperature, allow_zero=True)
-    rng = np.random.default_rng(seed)
+    rng = as_generator("seed", seed)
     pos, rad, box = random_packing(n, packing_fraction, radius=radius, radii=radii,
                                    aspect=aspect, periodic=periodic, seed=rng)
     mass = per_disk("masses", masses, len(pos))

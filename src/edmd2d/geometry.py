@@ -10,6 +10,12 @@ from ._validate import as_float_array, as_positive_float
 
 __all__ = ["Box", "Wall"]
 
+# The largest box side, and the largest product of a length and a speed the engine
+# accepts: contact times square such products (b^2, dv^2 (dp^2 - d^2)), which must stay
+# well inside float64's range (1.8e308), or the discriminant becomes inf or NaN and a
+# contact is missed or repeated forever.
+MAX_LENGTH = 1e150
+
 
 @dataclass(frozen=True, init=False)
 class Box:
@@ -39,6 +45,11 @@ class Box:
     def __init__(self, width: float, height: float, periodic=True) -> None:
         width = as_positive_float("Box width", width)
         height = as_positive_float("Box height", height)
+        for name, length in (("width", width), ("height", height)):
+            if length > MAX_LENGTH:  # (squared distances must stay finite)
+                raise ValueError(f"Box {name} must be at most {MAX_LENGTH:g} (lengths are "
+                                 f"squared in the contact times; choose a larger unit of "
+                                 f"length), got {length:g}")
         if isinstance(periodic, (bool, np.bool_)):
             pair = (bool(periodic), bool(periodic))
         else:

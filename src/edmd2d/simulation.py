@@ -20,8 +20,8 @@ from ._engine import loop as _loop
 from ._engine import overlap as _overlap
 from ._engine import queue as _queue
 from ._sums import dot, weighted_sum
-from ._validate import as_count, as_float_array, indices_where, per_disk
-from .geometry import Box, Wall
+from ._validate import as_count, as_float_array, as_generator, indices_where, per_disk
+from .geometry import MAX_LENGTH, Box, Wall
 
 __all__ = ["Simulation", "Counts"]
 
@@ -32,8 +32,10 @@ _OVERLAP_TOL = 1e-9
 # Margin by which a cell exceeds the largest diameter, so that a centre that is a
 # rounding error outside its logical cell is still seen by its neighbours.
 _CELL_MARGIN = 1e-9
-# Events per engine call; between calls Python regains control (Ctrl-C works).
-_CHUNK_EVENTS = 1 << 22
+# Events per engine call; between calls Python regains control, so that Ctrl-C stops a
+# run within a fraction of a second (2^18 events: 0.1-0.5 s at 0.5-2 M events/s),
+# leaving it at the last event processed.
+_CHUNK_EVENTS = 1 << 18
 # Events per engine call when a progress bar is shown (a few ms at 10^6 coll/s).
 _PROGRESS_EVENTS = 1 << 16
 # Systems at least this large are kept sorted in memory along a Z-order curve over the
@@ -237,6 +239,11 @@ class Simulation:
         mass = per_disk("masses", masses, n, allow_inf=True)
         if (mass <= 0).any():
             raise ValueError(f"masses must be > 0; disks {indices_where(mass <= 0)} are not")
+        tiny = mass < np.finfo(np.float64).tiny
+        if tiny.any():  # (1 / m would overflow, and the velocities become NaN)
+            raise ValueError(f"masses must be at least {np.finfo(np.float64).tiny:.3g} (a "
+                             f"normal float64, whose inverse is finite); disks "
+                             f"{indices_where(tiny)} are not")
         wall_list = _as_walls(walls)
         t0 = as_float_array("time", time, ())
         self._box = box
@@ -721,7 +728,7 @@ class Simulation:
         return out
 
     def _predict_all(self) -> None:
-        self._run(math.inf, 0, 0, np.array([self._time]), np.full(2, -1, np.int64),
+        self._run(math.inf, 0, 0, np.array([self._time]), np.zeros(4, np.int64),
                   _layout.PREDICT_ALL)
 
     def advance(self, until: float | None = None, collisions: int | None = None,
@@ -827,7 +834,7 @@ class Simulation:
                 f"no further event can ever happen (t={self._time}): "
                 f"{remaining} of the {max_coll} requested collisions cannot occur"
             )
-        raise self._engine_error(status, int(info[0]), int(info[1]))
+        raise self._engine_error(status, *(int(k) for k in info[:3]))
 
     def _advance(self, t_end, max_coll, bar, by_time):
         """The engine calls of :meth:`advance`: ``(status, info, remaining)``, the final
@@ -836,7 +843,9 @@ class Simulation:
         each."""
         remaining = max_coll
         out = np.array([self._time])
-        info = np.full(2, -1, np.int64)
+        # (the disks an error names and the event's kind; the events in a row at the time
+        # of the last one, carried from one engine call to the next)
+        info = np.array([-1, -1, -1, 0], np.int64)
         chunk = _CHUNK_EVENTS if bar is None else _PROGRESS_EVENTS
         clock = _time.perf_counter()
         while True:
@@ -919,8 +928,9 @@ class Simulation:
 
     def _check_clock_resolves_crossings(self, t_end: float) -> None:
         """Refuse a run to ``t_end`` at whose end the float64 clock could no longer
-        tell a disk's successive cell crossings apart (they are events: the clock would
-        stop, and the run never end)."""
+        tell a disk's successive cell crossings, or the thermostat's redraws, apart
+        (they are events: the clock would stop, and the run never end), and speeds
+        whose product with the box's size the contact times cannot square."""
         horizon = max(abs(self._time), abs(t_end) if math.isfinite(t_end) else 0.0)
         vel = self._velocities()
         v = float(np.hypot(vel[:, 0], vel[:, 1]).max())
@@ -936,6 +946,14 @@ class Simulation:
                     v += g * (t_end - self._time)
             else:
                 v = math.sqrt(v * v + 2.0 * g * math.hypot(*self._box.size))
+        if self._model is not None and self._model.thermo[1] > 0.0:
+            interval = 1.0 / float(self._model.thermo[1])  # (mean time between redraws)
+            if interval <= 64.0 * np.spacing(horizon):
+                raise ValueError(
+                    f"the thermostat redraws a velocity every {interval:.3g} on average, "
+                    f"which the float64 clock cannot resolve at t={horizon:.6g} (its "
+                    f"resolution there is {np.spacing(horizon):.3g}): the run could not "
+                    "advance.  Use a smaller thermostat rate.")
         side = float(min(self._gf[2], self._gf[3]))
         if v > 0.0 and side / v <= 64.0 * np.spacing(horizon):
             raise ValueError(
@@ -945,11 +963,18 @@ class Simulation:
                 "the run could not advance.  Use smaller speeds (a slower unit of time) "
                 "or a shorter run."
             )
+        extent = max(self._box.size)
+        if v * extent > MAX_LENGTH:
+            raise ValueError(
+                f"a disk at speed {v:.3g} in a box of side {extent:.3g}: the product, "
+                f"{v * extent:.3g}, must be at most {MAX_LENGTH:g} (the contact times "
+                "square it).  Use smaller speeds (a slower unit of time).")
 
-    def _engine_error(self, status: int, i: int, j: int) -> RuntimeError:
+    def _engine_error(self, status: int, i: int, j: int, kind: int = -1) -> RuntimeError:
         """The exception for an error status of the engine, which stopped before the
         event of internal disk ``i`` with ``j`` (a disk, a wall segment ``>= 0``, or
-        ``-1 - side`` for a box wall, as the event's kind says)."""
+        ``-1 - side`` for a box wall, as the event's kind says), or, for disks wedged,
+        right after such an event of kind ``kind``."""
         t_bad = float(self._qt[i])
         user_i = int(self._order[i])
         stopped = f"The simulation stopped at t={self._time}."
@@ -985,6 +1010,20 @@ class Simulation:
                 f"collisions in a row that took no time (disks involved: "
                 f"{indices_where(np.isin(np.arange(len(self)), involved))}); the run would "
                 f"need unboundedly many events. {advice} {stopped}"
+            )
+        if status == _layout.ERR_WEDGED:
+            other = (f"disk {int(self._order[j])}" if kind == _layout.DISK else
+                     where if kind in (_layout.SEGMENT, _layout.BOX) else
+                     "a grid cell's edge" if kind == _layout.CROSS else "a redraw")
+            limit = max(_layout.WEDGED_EVENTS_PER_DISK * len(self), _layout.WEDGED_EVENTS_MIN)
+            return RuntimeError(
+                f"disks wedged at t={self._time}: disk {user_i} and {other} took part in "
+                f"{limit} events in a row at this one time, and the clock cannot advance: "
+                "disks that touch with no room to move (a ring of touching disks around a "
+                "periodic axis, a disk between a wall and a peg or between two walls) "
+                "collide forever at one instant.  Give them room (a larger box, smaller "
+                "or fewer disks) or set velocities that do not drive them into each "
+                f"other. {stopped}"
             )
         return RuntimeError(f"internal error: engine returned status {status}")  # pragma: no cover
 
@@ -1499,7 +1538,7 @@ def _build_model(species, restitution, wall_restitution, tc, rad, vel, mass,
         return spec, None
     rng = None
     if heated or thermostat is not None:
-        rng = np.random.default_rng(seed)
+        rng = as_generator("seed", seed)
     return spec, _models.Model(table, wall, tc, np.zeros_like(spec) if scalar else spec,
                                wall_kt, thermostat, rng, time)
 

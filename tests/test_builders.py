@@ -7,7 +7,7 @@ import pytest
 from scipy import stats
 
 import edmd2d as ed
-from conftest import seed_of
+from conftest import seed_of, segment_distance
 
 
 @pytest.mark.parametrize("periodic", [True, False, (True, False)])
@@ -200,3 +200,94 @@ def test_make_gas_shuffles_masses_with_their_radii():
     pairs = set(zip(sim.radii.tolist(), sim.masses.tolist()))
     assert pairs == {(0.5, 1.0), (0.7, 4.0)}
     assert not np.array_equal(sim.radii, radii)  # (shuffled)
+
+
+# --------------------------------------------------------------------------- walls
+def crossed(pos, rad, walls, box):
+    """Disks that a segment crosses, brute force: the distance of every periodic image
+    of the centre (3 x 3 on a periodic box) to each segment, against the radius."""
+    out = np.zeros(len(pos), bool)
+    for w in walls:
+        for sx in (-1, 0, 1) if box.periodic[0] else (0,):
+            for sy in (-1, 0, 1) if box.periodic[1] else (0,):
+                p = pos + [sx * box.width, sy * box.height]
+                out |= segment_distance(p, w) <= rad * (1 + 1e-9)
+    return out
+
+
+def test_walls_leave_out_the_lattice_disks_they_cross():
+    # 400 disks at 0.3: a 32.36-wide square periodic box.  A wall across the middle,
+    # a triangle, and a wall 0.05 from the edge x = 0, which crosses the disks near
+    # x = width through their periodic images.
+    walls = [ed.Wall((16.0, 0.0), (16.0, 20.0)), ed.Wall((0.05, 5.0), (0.05, 25.0))]
+    walls += ed.Wall.polygon([(5.0, 25.0), (10.0, 25.0), (7.5, 29.0)])
+    free = ed.make_gas(400, 0.3, seed=seed_of(40))
+    cut = crossed(free.positions, free.radii, walls, free.box)
+    assert 10 < cut.sum() < 100
+    through_image = free.positions[:, 0] > free.box.width - 0.8
+    assert (cut & through_image).any()  # (only through the image)
+    with pytest.warns(UserWarning, match=rf"crossed {cut.sum()} of the 400 lattice disks"):
+        sim = ed.make_gas(400, 0.3, seed=seed_of(40), walls=walls)
+    # The same lattice, the crossed disks left out, in order.
+    np.testing.assert_array_equal(sim.positions, free.positions[~cut])
+    np.testing.assert_array_equal(sim.radii, free.radii[~cut])
+    assert sim.walls == tuple(walls) and sim.box == free.box
+    # Velocities for the disks that remain: segments conserve no momentum, f = 2n.
+    n = len(sim)
+    assert n == 400 - cut.sum()
+    assert 2 * sim.kinetic_energy() / (2 * n) == pytest.approx(1.0, rel=1e-12)
+    assert ed.kinetic_temperature(sim) == pytest.approx(1.0, rel=1e-12)
+    np.testing.assert_allclose(sim.momentum(), 0.0, atol=1e-10)
+    sim.advance(collisions=2000)  # runs, the walls in place
+    assert sim.counts.collisions >= 2000
+
+
+def test_walls_in_a_mixture_and_a_random_start():
+    radii = np.where(np.arange(300) % 2, 0.5, 0.7)
+    masses = np.where(np.arange(300) % 2, 1.0, 2.0)
+    walls = [ed.Wall((3.0, 3.0), (20.0, 12.0))]
+    for build in (ed.make_gas, ed.random_gas):
+        free = build(300, 0.4, radii=radii, masses=masses, periodic=False, seed=seed_of(41))
+        cut = crossed(free.positions, free.radii, walls, free.box)
+        with pytest.warns(UserWarning, match=rf"crossed {cut.sum()} of the 300"):
+            sim = build(300, 0.4, radii=radii, masses=masses, periodic=False,
+                        seed=seed_of(41), walls=walls)
+        np.testing.assert_array_equal(sim.positions, free.positions[~cut])
+        np.testing.assert_array_equal(sim.masses, free.masses[~cut])  # (with their radii)
+        assert len(sim.walls) == 1 and 0 < cut.sum() < 60
+
+
+def test_walls_that_cross_nothing_and_no_walls():
+    import warnings
+
+    free = ed.make_gas(100, 0.2, seed=seed_of(42))
+    for none in (None, []):
+        same = ed.make_gas(100, 0.2, seed=seed_of(42), walls=none)
+        np.testing.assert_array_equal(same.velocities, free.velocities)
+        assert same.walls == ()
+    # A short wall in a gap of the lattice: every disk stays, no warning.
+    x, y = free.positions[0]
+    gap = (x + 0.5 * (free.positions[1, 0] - x), y)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        sim = ed.make_gas(100, 0.2, seed=seed_of(42), walls=ed.Wall(gap, (gap[0], y + 0.1)))
+    assert len(sim) == 100 and len(sim.walls) == 1
+    np.testing.assert_array_equal(sim.positions, free.positions)
+
+
+@pytest.mark.parametrize(
+    "walls, error, pattern",
+    [
+        ("walls", TypeError, "walls must be an edmd2d.Wall or a sequence of them, got str"),
+        (np.array([[1.0, 1.0], [5.0, 5.0]]), TypeError, r"Wall\.polygon\(vertices\)"),
+        ([((1.0, 1.0), (5.0, 5.0))], TypeError, r"walls\[0\] must be an edmd2d.Wall, got tuple"),
+        ([ed.Wall((1.0, 1.0), (5.0, 5.0)), ed.Wall((1.0, 1.0), (50.0, 5.0))], ValueError,
+         r"walls\[1\] has an end point \(50\.0, 5\.0\) outside the box \[0, 12\.53\d*\] x"),
+        # Walls 0.32 apart over the whole box: every disk is crossed.
+        ([ed.Wall((0.0, y), (12.5, y)) for y in np.linspace(0.0, 12.5, 40)], ValueError,
+         "the wall segments cross every one of the 100 lattice disks"),
+    ],
+)
+def test_bad_walls(walls, error, pattern):
+    with pytest.raises(error, match=pattern):
+        ed.make_gas(100, 0.5, walls=walls)

@@ -236,6 +236,31 @@ end = [3.0, 6.0]
     assert speed2[heavy].mean() < speed2[~heavy].mean()
 
 
+def test_walls_leave_out_the_disks_make_gas_leaves_out():
+    # One rule for both: a wall across the box and one 0.05 from the periodic edge
+    # x = 0, which crosses the disks near x = width through their images.
+    text = CONFIG + """
+[[walls]]
+start = [5.0, 0.0]
+end = [5.0, 20.0]
+[[walls]]
+start = [0.05, 2.0]
+end = [0.05, 20.0]
+"""
+    sim, removed = config.build(config.loads(text), seed=seed_of(3))
+    walls = [ed.Wall((5.0, 0.0), (5.0, 20.0)), ed.Wall((0.05, 2.0), (0.05, 20.0))]
+    with pytest.warns(UserWarning, match=f"crossed {removed} of the 200 lattice disks"):
+        gas = ed.make_gas(200, 0.3, seed=seed_of(3), walls=walls)
+    assert removed > 0 and len(sim) == len(gas) == 200 - removed
+    np.testing.assert_array_equal(sim.positions, gas.positions)
+    assert sim.walls == gas.walls
+    free = ed.make_gas(200, 0.3, seed=seed_of(3))
+    kept = {tuple(p) for p in sim.positions.tolist()}
+    x, y = free.positions.T
+    across = free.positions[(x > free.box.width - 0.5) & (y > 2.0) & (y < 20.0)]
+    assert len(across) and not any(tuple(p) in kept for p in across.tolist())
+
+
 def test_the_progress_bar_is_shown_unless_asked_not_to(tmp_path, capsys):
     text = CONFIG.replace("[output]\ngsd_every = 1.0\ncheckpoint_every = 2.5\n", "")
     assert run(["run", write(tmp_path, text), "-o", tmp_path / "out"]) == 0

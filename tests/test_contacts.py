@@ -11,8 +11,14 @@ import pytest
 import edmd2d as ed
 from conftest import min_image, seed_of, segment_distance
 from edmd2d import contacts
+from edmd2d.compress import DEFAULT_MAX_PRESSURE
 
 SQRT3 = math.sqrt(3.0)
+
+# Wide tolerances (a neighbour count, not contacts) and hand-built configurations with
+# no backbone warn by design; the tests that use them on purpose say so.
+WIDE_TOL = pytest.mark.filterwarnings("ignore:contact_network. tol=.*does not separate")
+NO_BACKBONE = pytest.mark.filterwarnings("ignore:contact_network. every disk is a rattler")
 
 
 def square_lattice(nx, ny, spacing=1.0):
@@ -67,9 +73,11 @@ def test_square_lattice_has_four_contacts_each():
     assert net.n_isostatic == 127 and net.excess_contacts == 1 and not net.is_isostatic
     assert net.max_overlap == 0.0 and len(net.box_contacts) == 0
     assert (net.pairs[:, 0] < net.pairs[:, 1]).all()
-    # The diagonal neighbours, sqrt(2) - 1 diameters away, are no contacts even at 0.4.
-    assert ed.contact_network(square_lattice(8, 8), ed.Box(8.0, 8.0), radii=0.5,
-                              tol=0.4).n_contacts == 128
+    # The diagonal neighbours, sqrt(2) - 1 diameters away, are no contacts even at 0.4
+    # (which lies among them, and says so).
+    with pytest.warns(UserWarning, match=r"tol=0.4 does not separate .* 256 relative gaps"):
+        wide = ed.contact_network(square_lattice(8, 8), ed.Box(8.0, 8.0), radii=0.5, tol=0.4)
+    assert wide.n_contacts == 128
 
 
 def test_triangular_lattice_has_six_contacts_each():
@@ -88,6 +96,8 @@ def test_contacts_scale_with_the_disks():
     assert net.n_contacts == 108
 
 
+@WIDE_TOL
+@NO_BACKBONE  # (tol=0 in a random packing)
 def test_pairs_agree_with_brute_force():
     rng = np.random.default_rng(seed_of(3))
     pos, rad, box = ed.random_packing(150, 0.45, radii=rng.uniform(0.3, 0.6, 150),
@@ -138,7 +148,8 @@ def test_rattlers_are_removed_iteratively():
     a = np.column_stack([np.arange(k), np.zeros(k)])
     b = np.column_stack([np.arange(k - 1) + 0.5, np.full(k - 1, SQRT3 / 2)])
     pos = np.concatenate([a, b]) + 5.0
-    net = ed.contact_network(pos, ed.Box(30.0, 30.0), radii=0.5)
+    with pytest.warns(UserWarning, match=r"every disk is a rattler at tol=1e-07 \(43 contacts"):
+        net = ed.contact_network(pos, ed.Box(30.0, 30.0), radii=0.5)
     assert (net.contact_numbers >= 3).sum() == 2 * k - 1 - 2
     assert net.rattlers.all() and net.n_contacts == 0
     assert math.isnan(net.mean_contact_number) and not net.is_isostatic
@@ -149,6 +160,7 @@ def test_rattlers_are_removed_iteratively():
     assert sorted(map(tuple, held.box_contacts.tolist())) == [(0, 0), (k - 1, 1)]
 
 
+@WIDE_TOL
 def test_peeling_matches_one_at_a_time_removal():
     for seed in range(4):
         rng = np.random.default_rng(seed)
@@ -164,6 +176,7 @@ def test_peeling_matches_one_at_a_time_removal():
 
 
 # --------------------------------------------------------------------------- periodic
+@NO_BACKBONE
 def test_contacts_across_the_periodic_edges():
     box = ed.Box(10.0, 8.0)
     pos = np.array([[0.2, 4.0], [9.2, 4.0],      # across x = 0
@@ -177,6 +190,7 @@ def test_contacts_across_the_periodic_edges():
     assert len(walled.pairs) == 0
 
 
+@NO_BACKBONE
 def test_a_box_two_diameters_wide_holds_two_contacts_per_pair():
     pos = np.array([[0.5, 2.0], [1.5, 2.0]])
     net = ed.contact_network(pos, ed.Box(2.0, 5.0, periodic=(True, False)), radii=0.5)
@@ -209,6 +223,7 @@ def test_a_disk_held_by_three_walls_is_isostatic_by_count():
     assert net.n_wall_contacts == 3 and net.n_isostatic == 3 and net.is_isostatic
 
 
+@NO_BACKBONE
 def test_wall_segment_contacts():
     box = ed.Box(10.0, 10.0)
     walls = [ed.Wall((5.0, 2.0), (5.0, 8.0)), ed.Wall((0.2, 1.0), (0.2, 3.0))]
@@ -240,6 +255,7 @@ def test_a_simulation_is_read_with_its_walls():
 
 
 # --------------------------------------------------------------------------- overlaps
+@NO_BACKBONE
 def test_overlaps_are_reported():
     pos = np.array([[2.0, 2.0], [2.999, 2.0], [6.0, 0.4]])
     net = ed.contact_network(pos, ed.Box(8.0, 8.0, periodic=(True, False)), radii=0.5)
@@ -277,6 +293,52 @@ def test_automatic_tolerance_separates_contacts_from_near_contacts():
     assert net.rattlers.tolist() == [k % 10 == 0 for k in range(400)]
     full = ed.contact_network(pos, box, radii=0.5).pairs
     assert net.n_contacts == int((full % 10 != 0).all(axis=1).sum())
+
+
+@pytest.fixture(scope="module")
+def jammed_mixtures():
+    """The 50:50 mixture of diameter ratio 1.4 (128 disks) jammed by compress with its
+    default stop, Z >= 1e9, at two seeds."""
+    radii = np.where(np.arange(128) % 2, 0.5, 0.7)
+    return [ed.compress(ed.random_gas(128, 0.4, radii=radii, seed=seed_of(k)), rate=1e-2)
+            for k in (20, 21)]
+
+
+def test_the_default_tolerance_finds_the_contacts_of_a_default_compression(jammed_mixtures):
+    import warnings
+
+    for jam in jammed_mixtures:
+        assert jam.reached == "jammed" and jam.reduced_pressure >= DEFAULT_MAX_PRESSURE
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # a clear separation: no warning
+            net = ed.contact_network(jam.simulation)
+        assert net.tol == contacts.DEFAULT_TOL == 1e-7
+        # Non-rattlers near the isostatic 4 (3.83-3.95 at 128 disks over ten seeds,
+        # with 5-20 % rattlers), and the contacts of the rule 100 / Z of its own Z.
+        assert 3.75 < net.mean_contact_number < 4.05
+        assert net.n_rattlers < 0.3 * len(net.rattlers)
+        ref = ed.contact_network(jam.simulation, tol=100.0 / jam.reduced_pressure)
+        np.testing.assert_array_equal(net.rattlers, ref.rattlers)
+        assert net.n_contacts == ref.n_contacts
+        # Isostatic to within a few contacts (rattlers' partners missing).
+        assert -0.05 * net.n_isostatic < net.excess_contacts <= 2
+
+
+def test_a_tolerance_among_the_gaps_warns_naming_it(jammed_mixtures):
+    sim = jammed_mixtures[0].simulation
+    # 1 / Z: the contacts' gaps spread on both sides, and most disks look free.
+    with pytest.warns(UserWarning, match=r"tol=1e-09 does not separate contacts from gaps"):
+        net = ed.contact_network(sim, tol=1e-9)
+    assert net.n_rattlers > 0.9 * len(sim)
+    # A packing compressed to Z = 1e7 only: its contacts lie about the default.
+    radii = np.where(np.arange(64) % 2, 0.5, 0.7)
+    loose = ed.compress(ed.random_gas(64, 0.4, radii=radii, seed=seed_of(22)), rate=1e-2,
+                        max_pressure=1e7)
+    with pytest.warns(UserWarning, match=r"tol=1e-07"):
+        ed.contact_network(loose.simulation)
+    # With tol = 100 / Z it is a packing again.
+    net = ed.contact_network(loose.simulation, tol=100.0 / loose.reduced_pressure)
+    assert 3.5 < net.mean_contact_number < 4.2
 
 
 def test_automatic_tolerance_refuses_an_uncompressed_packing():
@@ -323,6 +385,7 @@ def test_bad_arguments(args, kwargs, error, pattern):
 
 
 # --------------------------------------------------------------------------- scale
+@WIDE_TOL
 def test_a_large_packing_is_quick():
     import time
 
@@ -334,6 +397,7 @@ def test_a_large_packing_is_quick():
 
 
 # --------------------------------------------------------------------------- freud
+@WIDE_TOL
 def test_neighbour_counts_agree_with_freud():
     freud = pytest.importorskip("freud", reason="freud-analysis is not installed: the "
                                 "cross-check with freud.locality is skipped")

@@ -1,18 +1,29 @@
 """One-line construction of systems: :func:`make_gas` (a gas from a lattice start) and
-:func:`random_packing` (disks placed at random without overlap)."""
+:func:`random_packing` (disks placed at random without overlap).
+
+Wall segments
+-------------
+:func:`make_gas` and :func:`random_gas` take ``walls=``: the disks of the start that a
+segment crosses (its distance from the centre, through the periodic images as the
+engine sees it, at most the radius times ``1 + 1e-9``) are left out, the velocities are
+drawn for the others, and the segments go to the simulation.  The command line
+(:func:`edmd2d.config.build`) leaves out the same disks by the same rule.
+"""
 
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
 from ._sums import weighted_sum
 from ._validate import as_count, as_generator, as_positive_float, indices_where, per_disk
-from .geometry import Box
+from .geometry import Box, Wall
 from .simulation import Simulation
 
-__all__ = ["make_gas", "lattice_packing_limit", "random_packing", "random_gas"]
+__all__ = ["make_gas", "lattice_packing_limit", "random_packing", "random_gas",
+           "clear_of_walls"]
 
 # Lattice sites (and randomly placed disks) must be this much farther apart than the
 # largest diameter (their sum of radii), so that rounding never reports an overlap.
@@ -42,6 +53,7 @@ def make_gas(
     tc=None,
     wall_temperatures=None,
     thermostat=None,
+    walls=None,
 ) -> Simulation:
     """A hard-disk gas at a given packing fraction, ready to run.
 
@@ -55,6 +67,15 @@ def make_gas(
     exactly ``temperature`` (k_B = 1; ``kT = sum m v^2 / f`` with ``f = 2n`` degrees of
     freedom less one for each periodic axis, along which momentum is conserved: the
     same count as :func:`edmd2d.measurements.degrees_of_freedom`).
+
+    With ``walls``, the lattice disks that a wall segment crosses are left out (those
+    closer to a segment than their radius, periodic images included), and the
+    velocities are drawn for the disks that remain, with ``f = 2n`` (segments
+    conserve no momentum).  ``n`` and ``packing_fraction`` then describe the lattice
+    before the walls: the gas holds at most ``n`` disks, ``len(sim)`` says how many,
+    and a ``UserWarning`` says how many were left out.  The box is the one made for
+    ``n`` disks at ``packing_fraction`` (``width = sqrt(sum(pi r^2) / packing_fraction
+    * aspect)``, ``height = width / aspect``); the walls must lie in it.
 
     Parameters
     ----------
@@ -85,20 +106,32 @@ def make_gas(
     restitution, wall_restitution, tc, wall_temperatures, thermostat : optional
         The physics, as for :class:`~edmd2d.Simulation` (the default ``tc`` is taken
         from the initial velocities at ``temperature``).
+    walls : Wall or sequence of Wall, optional
+        Wall segments inside the box (a closed container: ``Wall.polygon(vertices)``;
+        several: concatenate the lists).  The disks they cross are left out.
 
     Returns
     -------
     Simulation
-        At time 0.  Above the melting of hard disks (packing fraction about 0.70 to
+        At time 0, with ``len(sim) <= n`` disks when ``walls`` crossed some.  Above
+        the melting of hard disks (packing fraction about 0.70 to
         0.72) the lattice start does not melt: the system stays a crystal (hexatic
         and solid phases), however long it runs; below it, run a few tens of
         collisions per disk before measuring, so that the lattice start has melted.
+
+    Warns
+    -----
+    UserWarning
+        When ``walls`` crossed some lattice disks: how many were left out of ``n``,
+        and the packing fraction of those that remain.
 
     Raises
     ------
     TypeError, ValueError
         For n < 1, a packing fraction outside (0, limit) (the message gives the limit),
-        non-positive or infinite radii or masses, and the like.
+        non-positive or infinite radii or masses, and the like; for ``walls`` that are
+        not :class:`~edmd2d.Wall` segments, have an end point outside the box, or
+        cross every disk.
 
     Examples
     --------
@@ -110,6 +143,19 @@ def make_gas(
     0.3
     >>> round(sim.kinetic_energy() / (2 * 400 - 2), 12)  # E / (2N - 2) = k T / 2
     0.5
+
+    A wall across the middle of the same box (32.36 wide), and a triangular obstacle:
+
+    >>> import warnings
+    >>> walls = [ed.Wall((16.0, 0.0), (16.0, 20.0))]
+    >>> walls += ed.Wall.polygon([(5.0, 25.0), (10.0, 25.0), (7.5, 29.0)])
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     sim = ed.make_gas(400, 0.3, seed=1, walls=walls)
+    >>> len(sim) < 400, len(sim.walls)
+    (True, 4)
+    >>> print(caught[0].message)  # doctest: +ELLIPSIS
+    make_gas: the wall segments crossed ... of the 400 lattice disks, left out: ...
     """
     n = as_count("n", n, minimum=1)
     phi = as_positive_float("packing_fraction", packing_fraction)
@@ -119,9 +165,11 @@ def make_gas(
     mass = per_disk("masses", masses, n)
     if (mass <= 0).any():
         raise ValueError(f"masses must be > 0; disks {indices_where(mass <= 0)} are not")
+    segs = _as_wall_list(walls)
     rng = as_generator("seed", seed)
 
     box = _box_for(float(np.pi * np.sum(rad**2)), phi, aspect, periodic)
+    _check_walls_in(segs, box, "make_gas")
     dmax = 2.0 * float(rad.max())
     sites = _triangular_sites(n, box, dmax * (1.0 + _GAP))
     if sites is None:
@@ -138,10 +186,12 @@ def make_gas(
         shuffle = rng.permutation(n)
         rad = rad[shuffle]
         mass = mass[shuffle]
-    vel = _maxwell_boltzmann(rng, mass, temperature, sum(box.periodic))
+    pos, rad, mass = _leave_out_crossed(pos, rad, mass, segs, box, "make_gas", "lattice")
+    vel = _maxwell_boltzmann(rng, mass, temperature, 0 if segs else sum(box.periodic))
     return Simulation(pos, vel, rad, mass, box=box, gravity=gravity, restitution=restitution,
                       wall_restitution=wall_restitution, tc=tc,
-                      wall_temperatures=wall_temperatures, thermostat=thermostat, seed=rng)
+                      wall_temperatures=wall_temperatures, thermostat=thermostat, seed=rng,
+                      walls=segs)
 
 
 def lattice_packing_limit(n: int, *, radius=0.5, radii=None, aspect=1.0, periodic=True) -> float:
@@ -320,12 +370,15 @@ def random_gas(
     periodic=True,
     temperature: float = 1.0,
     seed=None,
+    walls=None,
 ) -> Simulation:
     """A hard-disk gas from a disordered start: :func:`random_packing` positions and
     Maxwell-Boltzmann velocities (as :func:`make_gas` draws them).
 
     The start for a compression (:func:`edmd2d.compress`): unlike a lattice, it has no
-    order to lose, and mixtures come out well mixed.
+    order to lose, and mixtures come out well mixed.  With ``walls``, the disks a
+    segment crosses are left out, as by :func:`make_gas` (``n`` is then an upper
+    bound, and a ``UserWarning`` says how many were left out).
 
     Parameters
     ----------
@@ -341,17 +394,24 @@ def random_gas(
         ``kT`` of the velocities, exactly (centre-of-mass motion removed), >= 0.
     seed : int, numpy.random.Generator or None
         Makes positions and velocities reproducible.
+    walls : Wall or sequence of Wall, optional
+        Wall segments inside the box, as for :func:`make_gas`.
 
     Returns
     -------
     Simulation
-        At time 0.
+        At time 0, with ``len(sim) <= n`` disks when ``walls`` crossed some.
+
+    Warns
+    -----
+    UserWarning
+        When ``walls`` crossed some disks, as :func:`make_gas`.
 
     Raises
     ------
     TypeError, ValueError
-        As :func:`random_packing`, and for non-positive or infinite masses or a
-        negative temperature.
+        As :func:`random_packing`, and for non-positive or infinite masses, a
+        negative temperature, or ``walls`` as for :func:`make_gas`.
 
     Examples
     --------
@@ -361,14 +421,99 @@ def random_gas(
     1.0
     """
     temperature = as_positive_float("temperature", temperature, allow_zero=True)
+    segs = _as_wall_list(walls)
     rng = as_generator("seed", seed)
     pos, rad, box = random_packing(n, packing_fraction, radius=radius, radii=radii,
                                    aspect=aspect, periodic=periodic, seed=rng)
     mass = per_disk("masses", masses, len(pos))
     if (mass <= 0).any():
         raise ValueError(f"masses must be > 0; disks {indices_where(mass <= 0)} are not")
-    vel = _maxwell_boltzmann(rng, mass, temperature, sum(box.periodic))
-    return Simulation(pos, vel, rad, mass, box=box)
+    _check_walls_in(segs, box, "random_gas")
+    pos, rad, mass = _leave_out_crossed(pos, rad, mass, segs, box, "random_gas", "placed")
+    vel = _maxwell_boltzmann(rng, mass, temperature, 0 if segs else sum(box.periodic))
+    return Simulation(pos, vel, rad, mass, box=box, walls=segs)
+
+
+def clear_of_walls(positions: np.ndarray, radii: np.ndarray, walls, box: Box) -> np.ndarray:
+    """Which disks no wall segment crosses: the rule by which :func:`make_gas`,
+    :func:`random_gas` and the command line leave disks out.
+
+    A segment crosses a disk when the distance from the disk's centre to it (the
+    nearest of the centre's periodic images, as the engine sees the segment) is at
+    most the radius times ``1 + 1e-9`` (a disk just touching a wall is left out too,
+    so that rounding never reports an overlap).
+
+    Parameters
+    ----------
+    positions : ndarray, shape (n, 2)
+        Centres, inside the box.
+    radii : ndarray, shape (n,)
+        Radii, > 0.
+    walls : sequence of Wall
+        The segments.
+    box : Box
+        The box, whose periodic axes the distances respect.
+
+    Returns
+    -------
+    ndarray of bool, shape (n,)
+        ``True`` for the disks to keep.
+    """
+    from .contacts import _segment_distance
+
+    keep = np.ones(len(positions), dtype=bool)
+    for w in walls:
+        dist = _segment_distance(positions, np.asarray(w.start), np.asarray(w.end), box)
+        keep &= dist > radii * (1.0 + _GAP)
+    return keep
+
+
+def _as_wall_list(walls) -> list:
+    """``walls`` as a list of Wall segments (``None``: none)."""
+    if walls is None:
+        return []
+    if isinstance(walls, Wall):
+        return [walls]
+    if isinstance(walls, (str, bytes, np.ndarray)) or not hasattr(walls, "__iter__"):
+        raise TypeError(f"walls must be an edmd2d.Wall or a sequence of them, got "
+                        f"{type(walls).__name__}; for a polygon pass "
+                        "walls=edmd2d.Wall.polygon(vertices)")
+    items = list(walls)
+    for k, w in enumerate(items):
+        if not isinstance(w, Wall):
+            raise TypeError(f"walls[{k}] must be an edmd2d.Wall, got {type(w).__name__} "
+                            f"({w!r}); for a polygon pass walls=edmd2d.Wall.polygon(vertices)")
+    return items
+
+
+def _check_walls_in(segs, box: Box, caller: str) -> None:
+    """Refuse segments with an end point outside the box made for the gas."""
+    for k, w in enumerate(segs):
+        for pt in (w.start, w.end):
+            if not (0.0 <= pt[0] <= box.width and 0.0 <= pt[1] <= box.height):
+                raise ValueError(
+                    f"walls[{k}] has an end point {tuple(pt)} outside the box [0, "
+                    f"{box.width:.6g}] x [0, {box.height:.6g}] that {caller} made for "
+                    "these disks at this packing fraction: place the walls inside it")
+
+
+def _leave_out_crossed(pos, rad, mass, segs, box: Box, caller: str, what: str):
+    """The disks no segment crosses (all without segments), with a warning naming how
+    many were left out."""
+    if not segs:
+        return pos, rad, mass
+    keep = clear_of_walls(pos, rad, segs, box)
+    kept = int(keep.sum())
+    if kept == 0:
+        raise ValueError(f"walls: the wall segments cross every one of the {len(pos)} "
+                         f"{what} disks; {caller} has no disk left to start from")
+    if kept < len(pos):
+        phi = float(np.pi * np.sum(rad[keep] ** 2)) / box.area
+        warnings.warn(
+            f"{caller}: the wall segments crossed {len(pos) - kept} of the {len(pos)} "
+            f"{what} disks, left out: {kept} disks remain, at packing fraction "
+            f"{phi:.4g} of the box", UserWarning, stacklevel=3)
+    return pos[keep], rad[keep], mass[keep]
 
 
 def _place(rng, rad, lo, span, box: Box, reach, max_attempts, phi):

@@ -49,6 +49,12 @@ __all__ = ["compress", "Compression", "packing_fraction", "CLOSE_PACKING"]
 #: (:data:`edmd2d.theory.ETA_CLOSE_PACKED`).
 CLOSE_PACKING = ETA_CLOSE_PACKED
 
+#: The reduced pressure at which :func:`compress` counts the disks as jammed unless
+#: told otherwise (its ``max_pressure``).  Touching disks are then about ``1 / Z`` of
+#: their diameter apart, and :func:`edmd2d.contact_network`'s default tolerance is
+#: ``100 / DEFAULT_MAX_PRESSURE`` (its contacts' gaps lie below it).
+DEFAULT_MAX_PRESSURE = 1e9
+
 
 def packing_fraction(sim) -> float:
     """The fraction of the container's area the disks cover now:
@@ -128,7 +134,7 @@ class Compression:
 
 
 def compress(system, target: float | None = None, *, rate: float = 1e-3,
-             max_pressure: float = 1e9, temperature: float | None = None,
+             max_pressure: float = DEFAULT_MAX_PRESSURE, temperature: float | None = None,
              rescale_every: float = 2.0, progress=False) -> Compression:
     """Compress a hard-disk system by growing its disks, to a packing fraction or until
     it jams.
@@ -162,7 +168,10 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
         ``sqrt(kT / m)``, > 0.  ``1e-3`` is slow enough for equal disks to follow the
         equilibrium equation of state through the fluid; ``1e-1`` is fast.
     max_pressure : float, default 1e9
-        The reduced pressure at which the disks count as jammed, > 1.
+        The reduced pressure at which the disks count as jammed, > 1
+        (:data:`DEFAULT_MAX_PRESSURE`).  :func:`edmd2d.contact_network`'s default
+        tolerance, ``1e-7``, suits the packings of this default; for a lower
+        ``max_pressure``, pass it ``tol=100 / result.reduced_pressure``.
     temperature : float, optional
         The ``kT`` to keep, > 0.  Default: the system's kinetic temperature.
     rescale_every : float, default 2.0

@@ -65,8 +65,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ._sums import dot
-
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
@@ -738,7 +736,8 @@ def build(cfg: RunConfig, seed: int):
     are laid on the lattice at random (species of equal radius told apart by a further
     random draw) and, if their masses differ,
     their velocities are drawn for their masses; disks that a wall segment crosses are
-    left out.
+    left out (by :func:`edmd2d.builders.clear_of_walls`, the rule of ``make_gas(...,
+    walls=...)``).
 
     Parameters
     ----------
@@ -794,9 +793,9 @@ def build(cfg: RunConfig, seed: int):
                 walls.extend(Wall.polygon(w["polygon"]))
             else:
                 walls.append(Wall(tuple(w["start"]), tuple(w["end"])))
-        keep = np.ones(len(pos), bool)
-        for w in walls:
-            keep &= _segment_distance(pos, w) > rad * (1.0 + 1e-9)
+        # (The rule of make_gas(walls=...); the species are labelled before, on the
+        # whole lattice, so that each keeps its count there.)
+        keep = builders.clear_of_walls(pos, rad, walls, start.box)
         if not keep.any():
             raise cfg.error(("walls",), "the wall segments cross every disk of the gas")
         wall_kt = model["wall_temperatures"]
@@ -834,13 +833,6 @@ def _species_labels(radii: np.ndarray, species: list, rng) -> np.ndarray:
         labels[where] = members if len(ids) == 1 else rng.permutation(members)
     return labels
 
-
-def _segment_distance(points: np.ndarray, wall) -> np.ndarray:
-    a, b = np.array(wall.start), np.array(wall.end)
-    u = b - a
-    s = np.clip(dot(points - a, u) / dot(u, u), 0.0, 1.0)
-    d = points - a - s[:, None] * u
-    return np.hypot(d[:, 0], d[:, 1])
 
 
 def _key_of_message(message: str) -> tuple:

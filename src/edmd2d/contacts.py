@@ -24,6 +24,20 @@ E 71, 011105 (2005); Charbonneau, Corwin, Parisi and Zamponi, Phys. Rev. Lett. 1
 205501 (2012)).  A tolerance must lie well above ``1 / Z`` (all contacts found) and as
 far below the near contacts as possible (none taken for a contact); there is a clean
 separation only in a packing compressed to a high ``Z``.
+
+The default tolerance, ``1e-7``, is ``100 / Z`` for the ``Z = 1e9`` at which
+:func:`edmd2d.compress` stops by default (:data:`edmd2d.compress.DEFAULT_MAX_PRESSURE`).
+Measured on the 50:50 mixture of diameter ratio 1.4 (256 disks, rate 1e-2, three
+seeds, ``Z`` = 1.01e9-1.05e9), the backbone's contacts have gaps up to 60-80 times
+``1 / Z`` (most below ``10 / Z``), and only a few gaps follow below ``1e3 / Z``:
+tolerances from ``100 / Z`` to ``3e3 / Z`` give the same backbone to within 6 of its
+441-465 contacts, while ``1 / Z`` (1e-9) leaves every disk a rattler.  A packing
+compressed further keeps its contacts below the default; one compressed less has
+contacts near or above it.  That is detected: when more gaps than 5 % of the contacts
+found lie within a factor ``sqrt(10)`` of ``tol`` on either side, the contacts depend
+on ``tol`` and :func:`contact_network` warns, naming it (for the packings above at the
+default, 3-7 gaps, 0.7-1.5 %; at 1e-9, some 250 gaps against a handful of contacts).
+It warns too when every disk is a rattler (no backbone, a mean contact number of NaN).
 """
 
 from __future__ import annotations
@@ -36,9 +50,11 @@ import numpy as np
 from ._sums import dot
 from ._validate import as_float_array, as_positive_float, indices_where, per_disk
 from .analysis import _boxsize, _min_image, _simulation_type, _wrap
+from .compress import DEFAULT_MAX_PRESSURE
 from .geometry import Box
 
-__all__ = ["ContactNetwork", "contact_network", "contact_tolerance", "BOX_SIDES"]
+__all__ = ["ContactNetwork", "contact_network", "contact_tolerance", "BOX_SIDES",
+           "DEFAULT_TOL"]
 
 #: Names of the box walls in ``ContactNetwork.box_contacts`` (side codes 0 to 3:
 #: ``x = 0``, ``x = width``, ``y = 0``, ``y = height``), as elsewhere in edmd2d.
@@ -48,6 +64,15 @@ _DIM = 2
 # Relative gaps are floored here by contact_tolerance before their logarithms are
 # compared: a lattice built at exact contact has gaps of 0 or +-1 ulp, all one class.
 _GAP_FLOOR = 2.0**-52
+#: The default relative tolerance of :func:`contact_network`: ``100 / Z`` for the
+#: reduced pressure ``Z = 1e9`` at which :func:`edmd2d.compress` stops by default (see
+#: the module notes).
+DEFAULT_TOL = 100.0 / DEFAULT_MAX_PRESSURE
+# contact_network warns when more gaps than this fraction of the contacts found lie
+# within a factor _BAND of tol (above or below): the tolerance then cuts through the
+# gaps instead of falling between contacts and near contacts.
+_AMBIGUOUS = 0.05
+_BAND = math.sqrt(10.0)
 # contact_tolerance looks at the gaps up to this fraction of the sum of radii: the
 # first shell of neighbours of a dense packing, some 3N gaps and more.
 _AUTO_REACH = 0.25
@@ -161,7 +186,7 @@ class ContactNetwork:
 
 # --------------------------------------------------------------------------- public
 def contact_network(source, box: Box | None = None, *, radii=None, walls=None,
-                    tol: float | str = 1e-9) -> ContactNetwork:
+                    tol: float | str = DEFAULT_TOL) -> ContactNetwork:
     """The contact network of a packing, its rattlers and its isostatic count.
 
     Two disks are in contact when their gap (centre distance, minimum image on
@@ -198,19 +223,32 @@ def contact_network(source, box: Box | None = None, *, radii=None, walls=None,
         Required with positions (> 0); not allowed with a Simulation.
     walls : Wall or sequence of Wall, optional
         Wall segments, with positions only (a Simulation's own are used).
-    tol : float or "auto", default 1e-9
-        The largest relative gap of a contact, in [0, 1).  The default suits packings
-        compressed to ``Z`` of about 1e11 and more, whose contacts have relative gaps
-        of order ``1 / Z`` (see the module notes); for a packing compressed less, take
-        ``tol`` about a hundred times ``1 / Z`` (for a tolerance of ``h``, some
-        ``h^0.6`` near contacts per disk are then counted as contacts), or ``"auto"``
-        (:func:`contact_tolerance`, which refuses a packing without a clear
-        separation).  Hand-built packings at exact contact have gaps of rounding only.
+    tol : float or "auto", default 1e-7
+        The largest relative gap of a contact, in [0, 1).  Contacts of a packing
+        compressed to a reduced pressure ``Z`` have relative gaps of order ``1 / Z``
+        (see the module notes): take ``tol`` about ``100 / Z``.  The default,
+        :data:`DEFAULT_TOL` ``= 100 / 1e9``, suits the packings :func:`edmd2d.compress`
+        makes with its default ``max_pressure = 1e9`` and any compressed further; for
+        a packing compressed less, pass ``tol=100 / result.reduced_pressure`` (for a
+        tolerance of ``h``, some ``h^0.6`` near contacts per disk are then counted as
+        contacts), or ``"auto"`` (:func:`contact_tolerance`, which refuses a packing
+        without a clear separation).  Hand-built packings at exact contact have gaps
+        of rounding only, found by any tolerance.
 
     Returns
     -------
     ContactNetwork
         The contacts, rattlers, counts and the largest overlap.
+
+    Warns
+    -----
+    UserWarning
+        When ``tol`` does not separate contacts from gaps: more than 5 % as many
+        gaps as contacts lie within a factor ``sqrt(10)`` of ``tol`` (the count
+        depends on ``tol``; e.g. a packing compressed less than ``tol`` suits, or a
+        tolerance wide enough to reach the neighbours of a gas), or no disk is left
+        after the rattlers are removed (``mean_contact_number`` is NaN).  The
+        message names ``tol`` and how many gaps lie near it.
 
     Raises
     ------
@@ -240,8 +278,11 @@ def contact_network(source, box: Box | None = None, *, radii=None, walls=None,
         tol = _auto_tolerance(cand, len(pos), min_separation=100.0)
     else:
         tol = _as_tol(tol)
-        cand = _candidates(pos, rad, box, segs, tol)
-    return _network(cand, rad, box, tol)
+        # Up to a factor _BAND above tol, for the check of the gaps near it.
+        cand = _candidates(pos, rad, box, segs, min(tol * _BAND, 1.0))
+    net = _network(cand, rad, box, tol)
+    _check_separation(cand, net, tol)
+    return net
 
 
 def contact_tolerance(source, box: Box | None = None, *, radii=None, walls=None,
@@ -257,9 +298,13 @@ def contact_tolerance(source, box: Box | None = None, *, radii=None, walls=None,
     packing has about ``2 N'`` contacts; a planar contact graph of disks at most
     about ``3 N``): the smallest gaps of contacts themselves spread over decades, and
     a step among them must not be taken.  This is robust for a packing compressed
-    until its contacts lie decades below its near contacts (``Z`` of 1e8 and more,
-    see the module notes), and on hand-built packings at contact; it is refused
-    otherwise.
+    until its contacts lie decades below its near contacts, with no stray gap
+    between them, and on hand-built packings at contact; it is refused otherwise.
+    A few gaps between the two (a rattler's, in its cage) are enough to split the
+    step: for the 50:50 mixture jammed by :func:`edmd2d.compress` with its default
+    ``Z = 1e9`` (256 disks, rate 1e-2), the widest step was a factor 4 to 70 over
+    three seeds, and it is refused there, where the default ``tol`` of
+    :func:`contact_network` suits.
 
     Parameters
     ----------
@@ -490,6 +535,29 @@ def _auto_tolerance(cand: _Candidates, n: int, *, min_separation: float) -> floa
             "the packing further or pass tol explicitly (about 100 / Z)")
     lo, hi = math.exp(logs[k]), math.exp(logs[k + 1])
     return min(math.sqrt(lo * hi), math.nextafter(1.0, 0.0))
+
+
+def _check_separation(cand: _Candidates, net: ContactNetwork, tol: float) -> None:
+    """Warn when ``tol`` does not separate contacts from gaps (see the module notes)."""
+    import warnings
+
+    rel = np.concatenate(_relative(cand))
+    found = int(np.count_nonzero(rel <= tol))
+    near = int(np.count_nonzero((rel > tol / _BAND) & (rel <= tol * _BAND)))
+    if near > _AMBIGUOUS * found:
+        warnings.warn(
+            f"contact_network: tol={tol:.3g} does not separate contacts from gaps: "
+            f"{near} relative gaps lie within a factor {_BAND:.3g} of it, against "
+            f"{found} contacts at or below it, so the contacts found depend on tol. "
+            "A packing compressed to a reduced pressure Z has its contacts about 1 / Z "
+            "apart: pass tol of about 100 / Z (the default 1e-7 suits Z = 1e9, the "
+            'default of compress), or tol="auto"', UserWarning, stacklevel=3)
+    elif net.n_rattlers == net.n_disks:
+        warnings.warn(
+            f"contact_network: every disk is a rattler at tol={tol:.3g} ({found} "
+            "contacts, none left once the disks with fewer than 3 are removed): no "
+            "backbone, mean_contact_number is NaN.  For a compressed packing, pass tol "
+            "of about 100 / Z (Z its reduced pressure)", UserWarning, stacklevel=3)
 
 
 def _relative(cand: _Candidates):

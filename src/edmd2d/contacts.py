@@ -43,6 +43,7 @@ It warns too when every disk is a rattler (no backbone, a mean contact number of
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -539,8 +540,6 @@ def _auto_tolerance(cand: _Candidates, n: int, *, min_separation: float) -> floa
 
 def _check_separation(cand: _Candidates, net: ContactNetwork, tol: float) -> None:
     """Warn when ``tol`` does not separate contacts from gaps (see the module notes)."""
-    import warnings
-
     rel = np.concatenate(_relative(cand))
     found = int(np.count_nonzero(rel <= tol))
     near = int(np.count_nonzero((rel > tol / _BAND) & (rel <= tol * _BAND)))

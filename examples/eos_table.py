@@ -5,8 +5,9 @@ theorem in 2D gives ``Z = P A / (N kT) = 1 + sum J |r_ij| / (2 t N kT)`` from th
 impulses of the collisions, and in equilibrium the same contact value
 ``g(sigma) = (Z - 1) / (2 eta)`` fixes the collision rate per disk,
 ``omega = 2 n sigma g(sigma) sqrt(pi kT / m)``.  This script measures both at packing
-fractions 0.3 and 0.5 and prints them beside Henderson's and the
-Santos-Lopez de Haro-Yuste equations of state and the virial series to B_10.
+fractions 0.3, 0.5 and 0.6 and prints them beside Kolafa and Rottner's equation of
+state (the reference for the fluid, from simulations extrapolated to infinite size),
+Henderson's and the Santos-Lopez de Haro-Yuste formulas and the virial series to B_10.
 
     python examples/eos_table.py                  # N = 4096, 2e7 collisions per point
     python examples/eos_table.py --n 1024 --collisions 2e6
@@ -40,7 +41,7 @@ def run(n, eta, collisions, blocks=20, seed=SEED):
     return m, time.perf_counter() - start
 
 
-def table(n, collisions, etas=(0.3, 0.5)):
+def table(n, collisions, etas=(0.3, 0.5, 0.6)):
     print(f"N = {n} disks (radius 0.5, m = 1, kT = 1, periodic square box), seed {SEED};")
     print(f"~{collisions:.3g} collisions per point after 100 collisions per disk; "
           "errors: standard error over 20 blocks.\n")
@@ -50,7 +51,8 @@ def table(n, collisions, etas=(0.3, 0.5)):
         print(f"eta = {eta}: run length t = {m.duration:.1f} ({m.collisions} collisions, "
               f"{seconds:.1f} s)")
         print(f"  Z measured                {z:.5f} +- {z_err:.5f}")
-        for name, ref in (("Henderson 1975", theory.henderson_z(eta)),
+        for name, ref in (("Kolafa-Rottner 2006", theory.kolafa_rottner_z(eta)),
+                          ("Henderson 1975", theory.henderson_z(eta)),
                           ("Santos et al. 1995", theory.santos_z(eta)),
                           ("virial series B2..B10", theory.virial_z(eta))):
             print(f"  Z {name:<24}{ref:.5f}   (measured - ref = {z - ref:+.5f}, "
@@ -59,7 +61,8 @@ def table(n, collisions, etas=(0.3, 0.5)):
         print(f"  collision rate            {m.collision_rate:.5f} +- "
               f"{m.collision_rate_error:.5f}"
               " per disk per unit time")
-        for name, ref in (("measured Z", z), ("Henderson", theory.henderson_z(eta)),
+        for name, ref in (("measured Z", z), ("Kolafa-Rottner", theory.kolafa_rottner_z(eta)),
+                          ("Henderson", theory.henderson_z(eta)),
                           ("Santos et al.", theory.santos_z(eta))):
             print(f"  Enskog rate, g(sigma) from {name:<14}{enskog(eta, ref):.5f}")
         g_rate = m.collision_rate / (2 * theory.number_density(eta)

@@ -338,3 +338,45 @@ def test_an_interrupted_run_leaves_a_checkpoint_to_resume(tmp_path, capsys, monk
     assert np.array_equal(a[0], b[0]) and np.array_equal(a[1], b[1]) and a[2] == b[2]
     assert (json.loads((tmp_path / "whole" / "results.json").read_text())["measurement"]
             == json.loads((parts / "results.json").read_text())["measurement"])
+
+
+COLLAPSING = """
+[gas]
+n = 100
+packing_fraction = 0.15
+periodic = false
+aspect = 0.5
+[model]
+restitution = 0.9
+wall_restitution = 0.9
+gravity = [0.0, -1.0]
+seed = 1
+[run]
+equilibrate = 5.0
+duration = 100.0
+blocks = 10
+[output]
+gsd_every = 10.0
+"""
+
+
+def test_a_failed_run_keeps_what_it_measured_and_resume_says_why(tmp_path, capsys):
+    """Inelastic disks poured under gravity settle until two rest on each other (an
+    inelastic collapse no tc ends): the run exits 1, but results.json holds the blocks
+    measured before, marked failed with the error, and the checkpoint the state before
+    the failure; resuming it says why it stopped and what to change, and runs nothing."""
+    path = write(tmp_path, COLLAPSING)
+    assert main(["run", str(path), "--no-progress"]) == 1
+    err = capsys.readouterr().err
+    assert "the simulation failed: inelastic collapse" in err
+    out = tmp_path / "gas-run"
+    results = json.loads((out / "results.json").read_text())
+    assert results["status"] == "failed" and "inelastic collapse" in results["error"]
+    assert 5.0 < results["time"] < 105.0
+    assert results["window"]["blocks_measured"] >= 1 and results["measurement"] is not None
+    state = ed.checkpoint.load(out / "checkpoint.edmd2d")
+    assert state.time == results["time"]
+    assert main(["resume", str(out / "checkpoint.edmd2d"), "--no-progress"]) == 1
+    err = capsys.readouterr().err
+    assert "this run failed at t=" in err and "[model] tc" in err
+    assert ed.checkpoint.load(out / "checkpoint.edmd2d").time == state.time  # (untouched)

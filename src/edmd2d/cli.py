@@ -279,6 +279,14 @@ def _cmd_resume(args) -> int:
     if meta.get("version") != _RUN_VERSION:
         raise UserError(f"{path} holds a run of format version {meta.get('version')}; this "
                         f"edmd2d {__version__} continues version {_RUN_VERSION}")
+    failure = meta.get("failure")
+    if failure is not None:
+        _say(f"edmd2d: this run failed at t={failure['time']:g}: {failure['error']}\n"
+             "Continuing from its checkpoint would meet the same event.  Change the "
+             "configuration (for an inelastic collapse, a larger [model] tc; for disks "
+             "at rest under gravity, walls that hold them) and run it again, or load the "
+             f"state in Python with edmd2d.checkpoint.load('{path}').", sys.stderr)
+        return 1
     sim = _load_checkpoint(path)
     if args.until is not None:
         if not args.until > sim.time:
@@ -344,6 +352,7 @@ class _Runner:
                 metadata=self._metadata))
         self._print_head(until)
         status = "complete" if until >= meta["end"] else "stopped"
+        failure = None
         try:
             if self.progress:
                 from . import progress as _progress
@@ -359,10 +368,18 @@ class _Runner:
                     self.bar = None
         except KeyboardInterrupt:
             status = "interrupted"
+        except RuntimeError as exc:
+            # (The simulation stands at the last event before the problem: keep it and
+            # what was measured up to it.)
+            status, failure = "failed", str(exc)
+            meta["failure"] = {"time": sim.time, "error": failure}
         _checkpoint.save(sim, path, metadata=self._metadata(sim))
         results = self._results(status)
         _write_json(out / RESULTS_FILE, results)
         self._print_tail(results, path)
+        if failure is not None:
+            _say(f"edmd2d: the simulation failed: {failure}", sys.stderr)
+            return 1
         return 130 if status == "interrupted" else 0
 
     # -------------------------------------------------------------- the table
@@ -412,6 +429,10 @@ class _Runner:
         if status == "complete":
             _say(f"done at t={sim.time:g}: {sim.counts.collisions} collisions; results in "
                  f"{self.out / RESULTS_FILE}")
+        elif status == "failed":
+            _say(f"failed at t={sim.time:g}: what was measured before is in "
+                 f"{self.out / RESULTS_FILE} (status 'failed'), the state before the "
+                 f"failure in {path}", sys.stderr)
         else:
             _say(f"{status} at t={sim.time:g}; continue with: edmd2d resume {path}",
                  sys.stderr if status == "interrupted" else sys.stdout)
@@ -434,6 +455,7 @@ class _Runner:
         return {
             "edmd2d": __version__,
             "status": status,
+            "error": (meta.get("failure") or {}).get("error") if status == "failed" else None,
             "config_file": meta["config_file"],
             "seed": meta["seed"],
             "time": sim.time,

@@ -5,12 +5,15 @@ that neither numba's in-memory compilation results nor the parent's allocations 
 leak into the numbers.  Run directly (for debugging)::
 
     python benchmarks/probes.py compile           # one import + build + first advance
+    python benchmarks/probes.py compile gravity   # the same for another kind of physics
     python benchmarks/probes.py memory 100000 0.5 # memory of one system of N disks
 
 Compile time
     ``cold``: ``EDMD2D_NUMBA_CACHE=0`` (numba's on-disk cache off), so everything is
     compiled: the time to ``import edmd2d``, build a 200-disk gas and run its first
     200 collisions.  ``warm``: the same with the cache on, after one run that fills it.
+    Each kind of physics compiles an event loop of its own: ``compile FAMILY`` builds
+    the gas of one of :data:`FAMILIES` instead of the elastic one.
 Memory
     After importing edmd2d and running a 100-disk system (so that the JIT and the
     interpreter are warm: this is the baseline), a gas of N disks is built and run for
@@ -66,22 +69,60 @@ def memory(n: int, packing: float) -> dict:
 
 
 # ---------------------------------------------------------------------- in the child
-def _compile_child() -> dict:
+# The keyword arguments of make_gas for each kind of physics (growth is set on the
+# Simulation itself; see _compile_child).
+WALLED = {"periodic": (True, False), "gravity": (0.0, -1.0)}
+FAMILIES = {
+    "elastic": {},
+    "restitution": {"restitution": 0.9},
+    "gravity": WALLED,
+    "gravity+restitution": {**WALLED, "restitution": 0.9},
+    "thermostat": {"thermostat": (1.0, 0.1)},
+    "growth": {},
+}
+
+
+def _compile_child(family: str = "elastic") -> dict:
     t0 = time.perf_counter()
     import edmd2d as ed
 
     t1 = time.perf_counter()
-    sim = ed.make_gas(COMPILE_N, 0.5, seed=1)
+    if family == "growth":
+        # Built with growth from the start, so that only the growth loop is compiled
+        # (make_gas would compile the elastic one for its first prediction).
+        positions, velocities, box = _lattice_gas(COMPILE_N, 0.5)
+        sim = ed.Simulation(positions, velocities, 0.5, box=box, growth=0.01, seed=1)
+    else:
+        sim = ed.make_gas(COMPILE_N, 0.5, seed=1, **FAMILIES[family])
     t2 = time.perf_counter()
     sim.advance(collisions=COMPILE_N)
     t3 = time.perf_counter()
     return {
+        "family": family,
         "cache": os.environ.get("EDMD2D_NUMBA_CACHE", "1"),
         "import_s": t1 - t0,
         "build_s": t2 - t1,
         "first_advance_s": t3 - t2,
         "total_s": t3 - t0,
+        # (the CPU time of the whole process: on a shared machine the wall times above
+        # include the time waiting for a core, while compiling is single-threaded)
+        "process_cpu_s": time.process_time(),
     }
+
+
+def _lattice_gas(n: int, packing: float):
+    """Positions, velocities and the periodic box of ``n`` disks of radius 0.5 on a
+    square lattice at ``packing``, with Gaussian velocities (numpy only)."""
+    import numpy as np
+
+    import edmd2d as ed
+
+    side = int(np.ceil(np.sqrt(n)))
+    length = np.sqrt(n * np.pi * 0.25 / packing)
+    ij = np.stack(np.divmod(np.arange(n), side), axis=1)
+    positions = (ij + 0.5) * (length / side)
+    velocities = np.random.default_rng(1).normal(size=(n, 2))
+    return positions, velocities, ed.Box(length, length, periodic=True)
 
 
 def _status_bytes(key: str) -> int:
@@ -158,10 +199,12 @@ def _memory_child(n: int, packing: float) -> dict:
 
 
 if __name__ == "__main__":
-    if sys.argv[1:2] == ["compile"]:
-        out = _compile_child()
+    if sys.argv[1:2] == ["compile"] and len(sys.argv) <= 3 and (
+            sys.argv[2:] == [] or sys.argv[2] in FAMILIES):
+        out = _compile_child(*sys.argv[2:])
     elif sys.argv[1:2] == ["memory"] and len(sys.argv) == 4:
         out = _memory_child(int(sys.argv[2]), float(sys.argv[3]))
     else:
-        sys.exit("usage: probes.py compile | probes.py memory N PACKING")
+        sys.exit(f"usage: probes.py compile [{' | '.join(FAMILIES)}] | "
+                 "probes.py memory N PACKING")
     print(json.dumps(out))

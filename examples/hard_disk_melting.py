@@ -53,16 +53,16 @@ nothing: it draws the figure from the finished points of one or more sweeps (sev
 system sizes, or a sweep still running) and writes their combined points to
 ``OUT.csv`` (the loop heights and falls are printed).  A run continued in a sweep of
 more windows (its ``state.edmd2d`` copied into the new sweep's task directory before
-it starts) is counted once, as its longer run (:func:`drop_continued`).
+it starts) is counted once, as its longer run (``drop_continued``).
 
 The runs at one ``(N, eta)`` (starts, replicas, several sweeps) are combined as a
 weighted mean whose error is widened by the scatter of the runs when they disagree
-(:func:`combine`).  Two numbers measure the loop against ``N``: its height, the
+(``combine``).  Two numbers measure the loop against ``N``: its height, the
 highest combined pressure at ``eta <= 0.710`` less the lowest one after it at ``eta
 <= 0.718``, as the published heights are read off the published curves, which noise
-inflates (:func:`loop_height`); and the fall of the pressure from 0.704 to 0.716, two
+inflates (``loop_height``); and the fall of the pressure from 0.704 to 0.716, two
 fixed points inside the loop of every published size from 870 disks up, which it
-does not (:func:`fall`).
+does not (``fall``).
 """
 
 from __future__ import annotations

@@ -155,6 +155,43 @@ def test_default_speed_scale_and_colorbar():
     assert len(ax.figure.axes) == 2
 
 
+@pytest.mark.parametrize("show_time", [False, True])
+@pytest.mark.parametrize("aspect", [1.0, 2.0, 0.5])
+def test_a_colorbar_widens_the_figure_and_leaves_the_box_as_it_was(aspect, show_time):
+    # The bar once took its width from the axes, and the box, kept at equal aspect,
+    # shrank and left empty bands above and below it (and on a tall box the tick
+    # labels were cut off at the figure's right edge).
+    sim = ed.make_gas(60, 0.4, aspect=aspect, seed=seed_of(5))
+    plain = viz.draw(sim, show_time=show_time)
+    barred = viz.draw(sim, show_time=show_time, colorbar=True)
+    for ax in (plain, barred):
+        ax.figure.canvas.draw()
+
+    def box_px(ax):
+        return ax.transData.transform([(0, 0), tuple(sim.box.size)]).ravel()
+
+    (x0, y0, x1, y1), (px0, py0, px1, py1) = box_px(barred), box_px(plain)
+    assert (x1 - x0, y0, y1) == pytest.approx((px1 - px0, py0, py1), abs=0.5)
+    fig = barred.figure
+    w, h = fig.get_size_inches()
+    pw, ph = plain.figure.get_size_inches()
+    assert h == pytest.approx(ph) and pw + 0.5 < w < pw + 1.5
+    cax = next(a for a in fig.axes if a is not barred)
+    bar = cax.get_tightbbox(fig.canvas.get_renderer())  # bar, ticks and label
+    assert x1 < bar.x0 and bar.x1 <= fig.bbox.x1
+    assert y0 <= cax.bbox.y0 < cax.bbox.y1 <= y1  # beside the box
+
+
+def test_a_colorbar_on_given_axes_or_size_takes_its_share_of_them():
+    sim = small_periodic()
+    ax = viz.draw(sim, colorbar=True, figsize=(4.0, 3.0))
+    assert tuple(ax.figure.get_size_inches()) == (4.0, 3.0)
+    _, (left, right) = plt.subplots(1, 2, figsize=(8, 3))
+    viz.draw(sim, ax=left, colorbar=True)
+    assert tuple(left.figure.get_size_inches()) == (8.0, 3.0)
+    assert len(left.figure.axes) == 3
+
+
 def test_species_mass_array_and_callable_colours():
     sim = small_periodic()  # classes (r, m): (0.4,1), (0.5,1) twice, (0.6,2)
     n = len(sim)

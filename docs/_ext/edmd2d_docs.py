@@ -220,7 +220,8 @@ class Example(_Executing):
 
         result = []
         intro = nodes.container(classes=["example-docstring"])
-        self.state.nested_parse(StringList(doc.splitlines(), source=str(script)), 0, intro)
+        self.state.nested_parse(StringList(_as_rst(doc, self.state), source=str(script)),
+                                0, intro)
         result.append(intro)
 
         mode = os.environ.get("EDMD2D_DOCS_GALLERY", "quick")
@@ -275,6 +276,24 @@ class Example(_Executing):
         holder = nodes.container()
         self.state.nested_parse(StringList([text]), self.content_offset, holder)
         return holder.children[0] if len(holder.children) == 1 else holder
+
+
+def _as_rst(text: str, state) -> list[str]:
+    """The lines to parse so that ``text``, reStructuredText (as every docstring of the
+    project), is read as such on the page of ``state``.
+
+    A directive on a Markdown page (the gallery's) parses nested content as Markdown
+    (MyST), where a literal block's ``::`` stays on the page and roles such as
+    ``:func:`` are plain text: the text goes inside MyST's ``eval-rst`` fence, longer
+    than any run of backticks in it.  Its literal blocks are the script's command lines,
+    highlighted as shell (the blocks the directive adds after it name their languages).
+    """
+    lines = [".. highlight:: bash", "", *text.splitlines()]
+    if not type(state).__module__.startswith("myst_parser"):
+        return lines
+    longest = max((len(run) for run in re.findall(r"`+", text)), default=0)
+    fence = "`" * max(3, longest + 1)
+    return [fence + "{eval-rst}", *lines, fence]
 
 
 def _report_seconds(app, doctree) -> None:

@@ -7,7 +7,8 @@
 1
 """
 
-from . import checkpoint, models, operations, theory
+# (_compile_notice says on standard error when the engine is being compiled)
+from . import _compile_notice, checkpoint, models, operations, theory  # noqa: F401
 from .analysis import (
     hexatic_order,
     local_packing_fractions,

@@ -84,6 +84,10 @@ _FIG_MIN_SIDE = 1.5
 _FIG_EDGE = 0.01
 # Points between the top of the box and the bottom of the time label.
 _LABEL_GAP_PT = 3.0
+# The colour bar of a figure made here: inches between the axes and the bar, and the
+# bar's width.  Its ticks and label take what they measure, right of the bar.
+_CBAR_GAP = 0.15
+_CBAR_WIDTH = 0.18
 # Colour of disks whose value is NaN (e.g. immovable disks when colouring by mass).
 _BAD_COLOR = "0.45"
 
@@ -139,7 +143,9 @@ def draw(
     wall_color : colour, default "k"
         Colour of wall segments and of walled box edges.
     colorbar : bool, default False
-        Add a colour bar (numeric colourings only).
+        Add a colour bar (numeric colourings only): right of the box, in a strip added
+        to the width of the figure made here, so that the box keeps its size; in given
+        axes, or with ``figsize``, it takes its share of the axes.
     show_time : bool, default False
         Write the time and the collision count above the box's upper left corner, in a
         strip added to the axes (the figure made here is taller by it).
@@ -944,13 +950,15 @@ class _Scene:
         pad = margin * max(w, h)
         label_font = mpl.font_manager.FontProperties(family="monospace", size="small")
         self._label_sep = "   "  # between time and collisions; a new line if narrow
+        sized_here = ax is None and figsize is None  # (room for a colour bar is added)
+        label = 0.0
         if ax is None:
             if figsize is None:
                 label = _label_height(label_font, 1) if show_time else 0.0
                 figsize = _figure_size(w + 2 * pad, h + 2 * pad, label)
                 if show_time and not _label_fits(label_font, (1 - 2 * _FIG_EDGE) * figsize[0]):
-                    figsize = _figure_size(w + 2 * pad, h + 2 * pad,
-                                           _label_height(label_font, 2))
+                    label = _label_height(label_font, 2)
+                    figsize = _figure_size(w + 2 * pad, h + 2 * pad, label)
             _fig, ax = plt.subplots(figsize=figsize)
             _fig.subplots_adjust(_FIG_EDGE, _FIG_EDGE, 1 - _FIG_EDGE, 1 - _FIG_EDGE)
         self.ax = ax
@@ -990,7 +998,10 @@ class _Scene:
         self.walls.set_gid("edmd2d-walls")
         ax.add_collection(self.walls, autolim=False)
 
-        if colorbar:
+        if colorbar and sized_here:
+            _colorbar_beside(ax, self.disks, self._color.label, (w + 2 * pad, h + 2 * pad),
+                             label)
+        elif colorbar:  # (the caller's axes or figure size: the bar takes its share)
             ax.figure.colorbar(self.disks, ax=ax, shrink=0.8, label=self._color.label)
         self.text = None
         if show_time:
@@ -1209,6 +1220,38 @@ def _figure_size(width: float, height: float, label: float = 0.0) -> tuple[float
         scale = (frac * fig_h - label) / height
         fig_w = scale * width / frac
     return max(fig_w, _FIG_MIN_SIDE), max(fig_h, _FIG_MIN_SIDE + label)
+
+
+def _colorbar_beside(ax: Axes, mappable, label: str, region: tuple[float, float],
+                     top: float) -> None:
+    """A colour bar right of ``ax`` in a strip added to the figure's width.
+
+    ``figure.colorbar(ax=...)`` would take its width from the axes, which were sized to
+    the box: the box, kept at equal aspect, would shrink and leave empty bands above and
+    below it.  Here the axes keep their size in inches and the figure grows instead, by
+    the gap, the bar and what its ticks and label measure.  The bar spans 0.8 of the
+    axes' height below the time label strip (``top`` inches), centred on the drawn
+    ``region`` (box plus margin, data units).
+    """
+    fig = ax.figure
+    fw, fh = fig.get_size_inches()
+    pos = ax.get_position(original=True)
+    x0, y0, aw, ah = pos.x0 * fw, pos.y0 * fh, pos.width * fw, pos.height * fh
+    bw, bh = region
+    scale = min(aw / bw, (ah - top) / bh)  # inches per data unit, as set_aspect gives
+    drawn = scale * bh + top  # (the region and the label strip, centred in the axes)
+    middle = y0 + 0.5 * (ah - drawn) + 0.5 * scale * bh
+    bar_h = 0.8 * (ah - top)
+    bar = [x0 + aw + _CBAR_GAP, middle - 0.5 * bar_h, _CBAR_WIDTH, bar_h]
+    cax = fig.add_axes([bar[0] / fw, bar[1] / fh, bar[2] / fw, bar[3] / fh])
+    fig.colorbar(mappable, cax=cax, label=label)
+    # What the ticks, their labels and the axis label take right of the bar, in inches,
+    # and then the figure's usual edge.
+    right = cax.get_tightbbox().x1 / fig.dpi - (bar[0] + bar[2])
+    width = fw + _CBAR_GAP + _CBAR_WIDTH + max(right, 0.0) + _FIG_EDGE * fw
+    fig.set_size_inches(width, fh)
+    ax.set_position([x0 / width, pos.y0, aw / width, pos.height])
+    cax.set_position([bar[0] / width, bar[1] / fh, bar[2] / width, bar[3] / fh])
 
 
 def _label_height(font, lines: int) -> float:

@@ -36,6 +36,11 @@ _CELL_MARGIN = 1e-9
 # run within a fraction of a second (2^18 events: 0.1-0.5 s at 0.5-2 M events/s),
 # leaving it at the last event processed.
 _CHUNK_EVENTS = 1 << 18
+# Events in a row at one instant after which disks count as wedged (no configuration
+# needs more: a row of simultaneous contacts, a lattice crossing its cells together):
+# per disk, and at least as many as this minimum.
+_WEDGED_EVENTS_PER_DISK = 64
+_WEDGED_EVENTS_MIN = 1 << 20
 # Events per engine call when a progress bar is shown (a few ms at 10^6 coll/s).
 _PROGRESS_EVENTS = 1 << 16
 # Systems at least this large are kept sorted in memory along a Z-order curve over the
@@ -728,7 +733,7 @@ class Simulation:
         return out
 
     def _predict_all(self) -> None:
-        self._run(math.inf, 0, 0, np.array([self._time]), np.zeros(4, np.int64),
+        self._run(math.inf, 0, 0, np.array([self._time]), np.full(2, -1, np.int64),
                   _layout.PREDICT_ALL)
 
     def advance(self, until: float | None = None, collisions: int | None = None,
@@ -834,7 +839,7 @@ class Simulation:
                 f"no further event can ever happen (t={self._time}): "
                 f"{remaining} of the {max_coll} requested collisions cannot occur"
             )
-        raise self._engine_error(status, *(int(k) for k in info[:3]))
+        raise self._engine_error(status, int(info[0]), int(info[1]))
 
     def _advance(self, t_end, max_coll, bar, by_time):
         """The engine calls of :meth:`advance`: ``(status, info, remaining)``, the final
@@ -843,9 +848,9 @@ class Simulation:
         each."""
         remaining = max_coll
         out = np.array([self._time])
-        # (the disks an error names and the event's kind; the events in a row at the time
-        # of the last one, carried from one engine call to the next)
-        info = np.array([-1, -1, -1, 0], np.int64)
+        info = np.full(2, -1, np.int64)  # (the disks an engine error names)
+        same = 0  # events in a row at the present time, over the calls so far
+        limit = max(_WEDGED_EVENTS_PER_DISK * len(self), _WEDGED_EVENTS_MIN)
         chunk = _CHUNK_EVENTS if bar is None else _PROGRESS_EVENTS
         clock = _time.perf_counter()
         while True:
@@ -866,6 +871,21 @@ class Simulation:
                 self._since_reorder += self.counts.events - events_before
             done = int(self._counts[_layout.C_COLLISIONS]) - before
             remaining -= done
+            # Disks wedged with no room to move (a ring of touching disks around a
+            # periodic axis, a disk between a wall and a peg) collide forever at one
+            # instant, the clock standing still: count the events of the calls that did
+            # not move it (here, between calls, it costs the event loop nothing).
+            if self._time == shown:
+                same += self.counts.events - events_before
+                if same >= limit:
+                    i = int(np.argmin(self._qt))  # (the next event: one of the wedged)
+                    kind = _layout.kind_of(int(self._E[i, _layout.KIND]))
+                    info[0] = i
+                    info[1] = (-1 - int(self._E[i, _layout.AUX]) if kind == _layout.BOX
+                               else int(self._E[i, _layout.PARTNER]))
+                    return _layout.ERR_WEDGED, info, remaining
+            else:
+                same = 0
             if bar is not None:
                 now = _time.perf_counter()
                 if by_time:
@@ -970,11 +990,10 @@ class Simulation:
                 f"{v * extent:.3g}, must be at most {MAX_LENGTH:g} (the contact times "
                 "square it).  Use smaller speeds (a slower unit of time).")
 
-    def _engine_error(self, status: int, i: int, j: int, kind: int = -1) -> RuntimeError:
+    def _engine_error(self, status: int, i: int, j: int) -> RuntimeError:
         """The exception for an error status of the engine, which stopped before the
         event of internal disk ``i`` with ``j`` (a disk, a wall segment ``>= 0``, or
-        ``-1 - side`` for a box wall, as the event's kind says), or, for disks wedged,
-        right after such an event of kind ``kind``."""
+        ``-1 - side`` for a box wall, as the event's kind says)."""
         t_bad = float(self._qt[i])
         user_i = int(self._order[i])
         stopped = f"The simulation stopped at t={self._time}."
@@ -1012,13 +1031,15 @@ class Simulation:
                 f"need unboundedly many events. {advice} {stopped}"
             )
         if status == _layout.ERR_WEDGED:
+            kind = _layout.kind_of(int(self._E[i, _layout.KIND]))
             other = (f"disk {int(self._order[j])}" if kind == _layout.DISK else
                      where if kind in (_layout.SEGMENT, _layout.BOX) else
                      "a grid cell's edge" if kind == _layout.CROSS else "a redraw")
-            limit = max(_layout.WEDGED_EVENTS_PER_DISK * len(self), _layout.WEDGED_EVENTS_MIN)
+            limit = max(_WEDGED_EVENTS_PER_DISK * len(self), _WEDGED_EVENTS_MIN)
             return RuntimeError(
-                f"disks wedged at t={self._time}: disk {user_i} and {other} took part in "
-                f"{limit} events in a row at this one time, and the clock cannot advance: "
+                f"disks wedged at t={self._time}: {limit} or more events in a row at this "
+                f"one time, the next of disk {user_i} with {other}, and the clock cannot "
+                "advance: "
                 "disks that touch with no room to move (a ring of touching disks around a "
                 "periodic axis, a disk between a wall and a peg or between two walls) "
                 "collide forever at one instant.  Give them room (a larger box, smaller "

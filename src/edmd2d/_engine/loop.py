@@ -77,7 +77,6 @@ from .layout import (
     ERR_IMMOVABLE_PAIR,
     ERR_IMMOVABLE_WALL,
     ERR_STALLED,
-    ERR_WEDGED,
     KICK,
     KIND,
     LOG_FULL,
@@ -94,8 +93,6 @@ from .layout import (
     STAGED,
     VX,
     VY,
-    WEDGED_EVENTS_MIN,
-    WEDGED_EVENTS_PER_DISK,
     X,
     direction_of,
     kind_of,
@@ -155,11 +152,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
     processed events.  ``out[0]`` receives the time of the last processed event (or is
     left unchanged if none was processed).  Returns a status code; on an error the
     offending disks (or disk and wall: ``-1 - side`` for a box wall) are written to
-    ``info[0:2]`` and the state is left as it was just before that event; for
-    ``ERR_WEDGED`` (more than ``WEDGED_EVENTS_PER_DISK`` per disk, and at least
-    ``WEDGED_EVENTS_MIN``, events in a row at one time) just after it, with its kind
-    in ``info[2]``.  ``info[3]`` carries the count of events in a row at ``out[0]``
-    from one call to the next (0 to start).
+    ``info`` and the state is left as it was just before that event.
 
     A model's thermostat redraws (``KICK``) are events of their own, at their times:
     one due before the next scheduled event is processed first.  With a model that
@@ -202,13 +195,6 @@ def run(t_end, max_collisions, max_events, mode, out, info,
     # compiled lookahead, not a second for the literal)
     qs[queue.FIRST] = -1  # (left by an earlier call: its list may have changed since)
     pvx = pvy = qvx = qvy = 0.0  # (velocities before an event, for the log's impulse)
-    # Disks wedged with no room to move (a ring of touching disks around a periodic
-    # axis, a disk between a wall and a peg) would collide forever at one instant,
-    # the clock standing still: count the events in a row at the same time, across
-    # calls too (``info[3]`` carries the count of those at ``out[0]``).
-    t_same = t
-    n_same = info[3]
-    same_limit = max(WEDGED_EVENTS_PER_DISK * S.shape[0], WEDGED_EVENTS_MIN)
     while True:
         if mode == PREDICT_ALL:
             npred = S.shape[0]
@@ -398,17 +384,6 @@ def run(t_end, max_collisions, max_events, mode, out, info,
 
         n_ev += 1
         out[0] = t
-        if t == t_same:
-            n_same += 1
-            if n_same >= same_limit:
-                info[0] = i
-                info[1] = -1 - aux if kind == BOX else partner
-                info[2] = kind
-                status = ERR_WEDGED
-                break
-        else:
-            t_same = t
-            n_same = 0
         if kind != CROSS and log_cap > 0:
             k = log_n[0]
             if k < log_cap:
@@ -421,5 +396,4 @@ def run(t_end, max_collisions, max_events, mode, out, info,
         if n_coll >= max_collisions:
             status = REACHED_COLLISIONS
             break
-    info[3] = n_same
     return status

@@ -33,7 +33,7 @@ def message(cache: bool) -> str:
     """The notice, for numba's on-disk cache on (``cache``) or off."""
     later = ("once: later runs load it from numba's disk cache and start at once" if cache
              else "in every new process: numba's disk cache is off, EDMD2D_NUMBA_CACHE=0")
-    return ("edmd2d: compiling the engine for this kind of system (typically 10-40 s, "
+    return ("edmd2d: compiling the engine for this kind of system (typically 10-30 s, "
             f"{later})")
 
 

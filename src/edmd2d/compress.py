@@ -43,7 +43,7 @@ from ._validate import as_positive_float
 from .measurements import container_area, kinetic_temperature
 from .theory import ETA_CLOSE_PACKED
 
-__all__ = ["compress", "Compression", "packing_fraction", "CLOSE_PACKING"]
+__all__ = ["compress", "Compression", "packing_fraction", "CLOSE_PACKING", "DEFAULT_MAX_PRESSURE"]
 
 #: The densest packing of equal disks, the triangular lattice: ``pi / (2 sqrt 3)``
 #: (:data:`edmd2d.theory.ETA_CLOSE_PACKED`).

@@ -65,6 +65,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ._validate import as_generator
+from .geometry import BOX_WALLS, Wall
+
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
@@ -261,7 +264,6 @@ _OUTPUT = {
     "checkpoint_minutes": (_number(0.0, lo_open=True), OPTIONAL),
 }
 _TABLES = {"gas": _GAS, "model": _MODEL, "walls": _WALL, "run": _RUN, "output": _OUTPUT}
-_BOX_WALLS = ("left", "right", "bottom", "top")
 
 
 def load(path) -> RunConfig:
@@ -431,8 +433,8 @@ def _check_wall_temperatures(cfg, model: dict) -> None:
                                    "segments by index)")
         out = {}
         for key, kt in value.items():
-            if key not in _BOX_WALLS and not key.isdigit():
-                raise cfg.error(where + (key,), _unknown(key, _BOX_WALLS, "wall")
+            if key not in BOX_WALLS and not key.isdigit():
+                raise cfg.error(where + (key,), _unknown(key, BOX_WALLS, "wall")
                                 + " (or a segment's index)")
             checked, problem = _number(0.0, lo_open=True)(kt)
             if problem:
@@ -759,11 +761,10 @@ def build(cfg: RunConfig, seed: int):
     """
     from . import builders
     from .builders import make_gas, random_gas
-    from .geometry import Wall
     from .simulation import Simulation
 
     gas, model = cfg.data["gas"], cfg.data["model"]
-    rng = np.random.default_rng(seed)
+    rng = as_generator("seed", seed)
     species = gas["species"]
     try:
         if species is None:

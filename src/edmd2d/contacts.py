@@ -52,14 +52,14 @@ from ._sums import dot
 from ._validate import as_float_array, as_positive_float, indices_where, per_disk
 from .analysis import _boxsize, _min_image, _simulation_type, _wrap
 from .compress import DEFAULT_MAX_PRESSURE
-from .geometry import Box
+from .geometry import BOX_WALLS, Box
 
 __all__ = ["ContactNetwork", "contact_network", "contact_tolerance", "BOX_SIDES",
            "DEFAULT_TOL"]
 
 #: Names of the box walls in ``ContactNetwork.box_contacts`` (side codes 0 to 3:
-#: ``x = 0``, ``x = width``, ``y = 0``, ``y = height``), as elsewhere in edmd2d.
-BOX_SIDES = ("left", "right", "bottom", "top")
+#: ``x = 0``, ``x = width``, ``y = 0``, ``y = height``): :data:`edmd2d.geometry.BOX_WALLS`.
+BOX_SIDES = BOX_WALLS
 
 _DIM = 2
 # Relative gaps are floored here by contact_tolerance before their logarithms are

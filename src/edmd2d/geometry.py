@@ -8,7 +8,14 @@ import numpy as np
 
 from ._validate import as_float_array, as_positive_float
 
-__all__ = ["Box", "Wall"]
+__all__ = ["Box", "Wall", "BOX_WALLS", "BOX_WALL_EQUATIONS"]
+
+#: The four walls of a box, in the order edmd2d numbers them everywhere (0 to 3: the
+#: walls at ``x = 0``, ``x = width``, ``y = 0``, ``y = height``, that is ``2 * axis``
+#: plus 1 at the far wall): in heated walls, wall pressures, contacts and messages.
+BOX_WALLS = ("left", "right", "bottom", "top")
+#: The same walls named by their equations, accepted wherever a box wall is named.
+BOX_WALL_EQUATIONS = ("x=0", "x=width", "y=0", "y=height")
 
 # The largest box side, and the largest product of a length and a speed the engine
 # accepts: contact times square such products (b^2, dv^2 (dp^2 - d^2)), which must stay

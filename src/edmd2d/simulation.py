@@ -21,7 +21,7 @@ from ._engine import overlap as _overlap
 from ._engine import queue as _queue
 from ._sums import dot, weighted_sum
 from ._validate import as_count, as_float_array, as_generator, indices_where, per_disk
-from .geometry import MAX_LENGTH, Box, Wall
+from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, MAX_LENGTH, Box, Wall
 
 __all__ = ["Simulation", "Counts"]
 
@@ -1003,7 +1003,7 @@ class Simulation:
                 f"t={t_bad}: two immovable bodies cannot collide. {stopped}"
             )
         where = (f"walls[{j}]" if j >= 0
-                 else f"the box wall at {_layout.BOX_WALL_NAMES[-1 - j]}")
+                 else f"the box wall at {BOX_WALL_EQUATIONS[-1 - j]}")
         if status == _layout.ERR_IMMOVABLE_WALL:
             return RuntimeError(
                 f"immovable disk {user_i} (mass=inf) reaches {where} at t={t_bad}: an "
@@ -1211,8 +1211,7 @@ class Simulation:
         ``"right"``, ``"bottom"``, ``"top"``; segments by index); empty if none."""
         if self._model is None:
             return {}
-        names = ("left", "right", "bottom", "top")
-        return {(names[k] if k < 4 else k - 4): float(t)
+        return {(BOX_WALLS[k] if k < 4 else k - 4): float(t)
                 for k, t in enumerate(self._model.wall_kt) if t > 0.0}
 
     def rescale_temperature(self, temperature: float) -> None:
@@ -1564,8 +1563,8 @@ def _build_model(species, restitution, wall_restitution, tc, rad, vel, mass,
                                wall_kt, thermostat, rng, time)
 
 
-_BOX_WALL_ALIASES = {"left": 0, "right": 1, "bottom": 2, "top": 3,
-                     **{name: k for k, name in enumerate(_layout.BOX_WALL_NAMES)}}
+_BOX_WALL_ALIASES = {**{name: k for k, name in enumerate(BOX_WALLS)},
+                     **{name: k for k, name in enumerate(BOX_WALL_EQUATIONS)}}
 
 
 def _wall_temperatures(value, box: Box, n_segments: int):

@@ -171,9 +171,8 @@ def unpack_segment(aux):
     return aux % 3, aux // 3
 
 
-# Box walls (the partner of a BOX event): x=0, x=width, y=0, y=height, i.e.
-# 2 * axis + (1 at the far wall)
-BOX_WALL_NAMES = ("x=0", "x=width", "y=0", "y=height")
+# Box walls (the partner of a BOX event) are numbered 2 * axis + (1 at the far wall):
+# x=0, x=width, y=0, y=height (their names: edmd2d.geometry.BOX_WALLS).
 
 # Counters (counts[...])
 C_COLLISIONS = 0

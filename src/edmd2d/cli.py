@@ -352,7 +352,6 @@ class _Runner:
                 metadata=self._metadata))
         self._print_head(until)
         status = "complete" if until >= meta["end"] else "stopped"
-        failure = None
         try:
             if self.progress:
                 from . import progress as _progress
@@ -371,14 +370,14 @@ class _Runner:
         except RuntimeError as exc:
             # (The simulation stands at the last event before the problem: keep it and
             # what was measured up to it.)
-            status, failure = "failed", str(exc)
-            meta["failure"] = {"time": sim.time, "error": failure}
+            status = "failed"
+            meta["failure"] = {"time": sim.time, "error": str(exc)}
         _checkpoint.save(sim, path, metadata=self._metadata(sim))
         results = self._results(status)
         _write_json(out / RESULTS_FILE, results)
         self._print_tail(results, path)
-        if failure is not None:
-            _say(f"edmd2d: the simulation failed: {failure}", sys.stderr)
+        if status == "failed":
+            _say(f"edmd2d: the simulation failed: {meta['failure']['error']}", sys.stderr)
             return 1
         return 130 if status == "interrupted" else 0
 

@@ -850,7 +850,7 @@ class Simulation:
         out = np.array([self._time])
         info = np.full(2, -1, np.int64)  # (the disks an engine error names)
         same = 0  # events in a row at the present time, over the calls so far
-        limit = max(_WEDGED_EVENTS_PER_DISK * len(self), _WEDGED_EVENTS_MIN)
+        limit = self._wedged_limit()
         chunk = _CHUNK_EVENTS if bar is None else _PROGRESS_EVENTS
         clock = _time.perf_counter()
         while True:
@@ -868,7 +868,8 @@ class Simulation:
                 # the events the engine has processed, or positions would be read at a
                 # time earlier than the disks' own.
                 self._time = float(out[0])
-                self._since_reorder += self.counts.events - events_before
+                events = self.counts.events - events_before
+                self._since_reorder += events
             done = int(self._counts[_layout.C_COLLISIONS]) - before
             remaining -= done
             # Disks wedged with no room to move (a ring of touching disks around a
@@ -876,7 +877,7 @@ class Simulation:
             # instant, the clock standing still: count the events of the calls that did
             # not move it (here, between calls, it costs the event loop nothing).
             if self._time == shown:
-                same += self.counts.events - events_before
+                same += events
                 if same >= limit:
                     i = int(np.argmin(self._qt))  # (the next event: one of the wedged)
                     kind = _layout.kind_of(int(self._E[i, _layout.KIND]))
@@ -990,6 +991,10 @@ class Simulation:
                 f"{v * extent:.3g}, must be at most {MAX_LENGTH:g} (the contact times "
                 "square it).  Use smaller speeds (a slower unit of time).")
 
+    def _wedged_limit(self) -> int:
+        """The events in a row at one time after which disks count as wedged."""
+        return max(_WEDGED_EVENTS_PER_DISK * len(self), _WEDGED_EVENTS_MIN)
+
     def _engine_error(self, status: int, i: int, j: int) -> RuntimeError:
         """The exception for an error status of the engine, which stopped before the
         event of internal disk ``i`` with ``j`` (a disk, a wall segment ``>= 0``, or
@@ -1035,11 +1040,10 @@ class Simulation:
             other = (f"disk {int(self._order[j])}" if kind == _layout.DISK else
                      where if kind in (_layout.SEGMENT, _layout.BOX) else
                      "a grid cell's edge" if kind == _layout.CROSS else "a redraw")
-            limit = max(_WEDGED_EVENTS_PER_DISK * len(self), _WEDGED_EVENTS_MIN)
             return RuntimeError(
-                f"disks wedged at t={self._time}: {limit} or more events in a row at this "
-                f"one time, the next of disk {user_i} with {other}, and the clock cannot "
-                "advance: "
+                f"disks wedged at t={self._time}: {self._wedged_limit()} or more events in "
+                f"a row at this one time, the next of disk {user_i} with {other}, and the "
+                "clock cannot advance: "
                 "disks that touch with no room to move (a ring of touching disks around a "
                 "periodic axis, a disk between a wall and a peg or between two walls) "
                 "collide forever at one instant.  Give them room (a larger box, smaller "

@@ -7,6 +7,7 @@ import pytest
 
 import edmd2d as ed
 from conftest import seed_of
+from edmd2d import _operations
 from edmd2d import operations as op
 
 
@@ -49,8 +50,8 @@ def test_a_gsd_trajectory_and_checkpoints_from_one_run(tmp_path):
 
 def test_wall_clock_triggers_fire_between_slices(monkeypatch):
     clock = iter(np.arange(0.0, 1e6, 1.0))  # (one "second" per stop)
-    monkeypatch.setattr(op._time, "monotonic", lambda: float(next(clock)))
-    monkeypatch.setattr(op, "WALL_CLOCK_SLICE", 100)
+    monkeypatch.setattr(_operations._time, "monotonic", lambda: float(next(clock)))
+    monkeypatch.setattr(_operations, "WALL_CLOCK_SLICE", 100)
     sim = ed.make_gas(200, 0.4, seed=seed_of(1))
     fired = []
     op.run(sim, collisions=1000, operations=[

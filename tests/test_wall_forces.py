@@ -20,7 +20,7 @@ import pytest
 
 import edmd2d as ed
 from conftest import seed_of
-from edmd2d import measurements, theory
+from edmd2d import geometry, measurements, theory
 
 # As in test_measure.py: tolerance in block-average standard errors, and the allowance
 # for the O(1/N) shift of a finite system.
@@ -45,11 +45,11 @@ def gas_in_polygon(vertices, eta, seed, pieces=1, box_margin=1.0):
     lo = v.min(axis=0) - box_margin
     v = v - lo
     w, h = v.max(axis=0) + box_margin
-    area = abs(measurements._shoelace(v))
+    area = abs(geometry._shoelace(v))
     n = int(round(eta * area / (math.pi * A * A)))
     edges = np.roll(v, -1, axis=0) - v
     inward = np.stack([-edges[:, 1], edges[:, 0]], axis=1)
-    inward *= np.sign(measurements._shoelace(v)) / np.hypot(*inward.T)[:, None]
+    inward *= np.sign(geometry._shoelace(v)) / np.hypot(*inward.T)[:, None]
     spacing = 1.02 * 2 * A
     xs = np.arange(0.0, w, spacing)
     ys = np.arange(0.0, h, spacing * math.sqrt(3) / 2)
@@ -166,7 +166,7 @@ def test_polygon_orientation_chooses_the_side():
         m = sim.measure(duration=20.0)
         assert (m.segment_pressures[:, side] > 0).all()
         assert (m.segment_pressures[:, 1 - side] == 0).all()
-        assert m.area == pytest.approx(abs(measurements._shoelace(vertices)), rel=1e-12)
+        assert m.area == pytest.approx(abs(geometry._shoelace(vertices)), rel=1e-12)
 
 
 # --------------------------------------------------------------------------- exact sums
@@ -188,7 +188,7 @@ def test_segment_impulses_sum_to_the_total_and_balance_the_momentum():
         a, b = np.array(wall.start), np.array(wall.end)
         s = np.clip((g.positions - a) @ (b - a) / ((b - a) @ (b - a)), 0.0, 1.0)
         clear &= np.hypot(*(g.positions - a - s[:, None] * (b - a)).T) > A + 0.01
-    inside = measurements._inside_polygon(g.positions, np.array([w.start for w in walls[:3]]))
+    inside = geometry._inside_polygon(g.positions, np.array([w.start for w in walls[:3]]))
     keep = clear & ~inside
     walled = ed.Simulation(g.positions[keep], g.velocities[keep], A, box=g.box, walls=walls)
 

@@ -304,11 +304,14 @@ def _report_seconds(app, doctree) -> None:
 
 # ------------------------------------------------------ references and the API coverage
 def canonical_name(module, name: str) -> str:
-    """Where the documentation of ``module.name`` lives: its defining module."""
+    """Where the documentation of ``module.name`` lives: its defining module, or, for
+    one defined in a private module, the public module that exports it."""
     obj = getattr(module, name)
     if inspect.ismodule(obj):
         return obj.__name__
     if inspect.isclass(obj) or inspect.isfunction(obj):
+        if any(part.startswith("_") for part in obj.__module__.split(".")):
+            return f"{module.__name__}.{name}"
         return f"{obj.__module__}.{obj.__qualname__}"
     return f"{module.__name__}.{name}"
 

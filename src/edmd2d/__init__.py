@@ -9,6 +9,7 @@
 
 # (_compile_notice says on standard error when the engine is being compiled)
 from . import _compile_notice, checkpoint, models, operations, theory  # noqa: F401
+from ._version import __version__  # noqa: F401
 from .analysis import (
     hexatic_order,
     local_packing_fractions,
@@ -36,7 +37,6 @@ __all__ = [
     "random_gas", "compress", "Compression", "packing_fraction",
     "voronoi_cell_areas", "local_packing_fractions",
 ]
-__version__ = "0.1.0"
 
 
 def __getattr__(name: str):

@@ -13,9 +13,12 @@ import math
 
 import numpy as np
 
+from . import _operations
 from ._sums import dot
 from ._validate import as_count, as_float_array, as_positive_float
 from .geometry import Box
+from .measurements import kinetic_temperature
+from .simulation import Simulation
 
 __all__ = [
     "radial_distribution",
@@ -30,15 +33,9 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- inputs
-def _simulation_type():
-    from .simulation import Simulation
-
-    return Simulation
-
-
 def _positions_and_box(source, box, name="positions"):
     """``(frames (F, N, 2), box, radii or None)`` from a Simulation or arrays + Box."""
-    if isinstance(source, _simulation_type()):
+    if isinstance(source, Simulation):
         if box is not None:
             raise TypeError("box must not be given with a Simulation (it has its own box)")
         return source.positions[None], source.box, source.radii
@@ -201,7 +198,7 @@ def radial_distribution(source, box: Box | None = None, *, r_max: float | None =
 
 # --------------------------------------------------------------------------- speeds
 def _velocities_and_masses(source, masses):
-    if isinstance(source, _simulation_type()):
+    if isinstance(source, Simulation):
         if masses is not None:
             raise TypeError("masses must not be given with a Simulation (it has its own)")
         mass = source.masses
@@ -300,9 +297,7 @@ def maxwell_boltzmann_test(source, *, masses=None, temperature: float | None = N
     vel, mass = _velocities_and_masses(source, masses)
     energy = 0.5 * mass * np.einsum("ij,ij->i", vel, vel)
     if temperature is None:
-        if isinstance(source, _simulation_type()):
-            from .measurements import kinetic_temperature
-
+        if isinstance(source, Simulation):
             kt = kinetic_temperature(source)
         else:
             kt = float(energy.mean())
@@ -339,9 +334,7 @@ def trajectory(sim, interval: float, frames: int):
         Unwrapped positions (:attr:`~edmd2d.Simulation.unwrapped_positions`): periodic
         wraps undone, so that differences are true displacements.
     """
-    from . import operations as _operations
-
-    if not isinstance(sim, _simulation_type()):
+    if not isinstance(sim, Simulation):
         raise TypeError(f"trajectory() needs an edmd2d.Simulation, got {type(sim).__name__}")
     interval = as_positive_float("interval", interval)
     frames = as_count("frames", frames, minimum=1)
@@ -594,7 +587,7 @@ def local_packing_fractions(source) -> np.ndarray:
     >>> bool(abs(local_packing_fractions(sim).mean() - 0.5) < 0.02)
     True
     """
-    if not isinstance(source, _simulation_type()):
+    if not isinstance(source, Simulation):
         raise TypeError(f"local_packing_fractions() needs an edmd2d.Simulation, got "
                         f"{type(source).__name__}")
     return np.pi * source.radii ** 2 / voronoi_cell_areas(source)

@@ -17,8 +17,10 @@ import warnings
 
 import numpy as np
 
+from . import _placement
 from ._sums import weighted_sum
 from ._validate import as_count, as_generator, as_positive_float, indices_where, per_disk
+from .contacts import _segment_distance
 from .geometry import Box, Wall
 from .simulation import Simulation
 
@@ -459,8 +461,6 @@ def clear_of_walls(positions: np.ndarray, radii: np.ndarray, walls, box: Box) ->
     ndarray of bool, shape (n,)
         ``True`` for the disks to keep.
     """
-    from .contacts import _segment_distance
-
     keep = np.ones(len(positions), dtype=bool)
     for w in walls:
         dist = _segment_distance(positions, np.asarray(w.start), np.asarray(w.end), box)
@@ -518,8 +518,6 @@ def _leave_out_crossed(pos, rad, mass, segs, box: Box, caller: str, what: str):
 
 def _place(rng, rad, lo, span, box: Box, reach, max_attempts, phi):
     """Random sequential addition of ``rad`` (sorted, largest first) into ``box``."""
-    from . import _placement
-
     n = len(rad)
     ncx = max(1, int(box.width // reach))
     ncy = max(1, int(box.height // reach))

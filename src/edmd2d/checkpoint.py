@@ -45,9 +45,12 @@ import numpy as np
 
 from . import models as _models
 from ._atomic import replacing
+from ._operations import Operation, Trigger
+from ._version import __version__
 from .geometry import Box, Wall
+from .simulation import Simulation
 
-__all__ = ["FORMAT", "VERSION", "save", "load", "read_metadata"]
+__all__ = ["FORMAT", "VERSION", "save", "load", "read_metadata", "Checkpoint"]
 
 #: The format name in every checkpoint's header; :func:`load` refuses other files.
 FORMAT = "edmd2d-checkpoint"
@@ -80,12 +83,8 @@ def save(sim, path, *, metadata: dict | None = None) -> None:
     OSError
         If the file cannot be written (the previous file, if any, is left as it was).
     """
-    from .simulation import Simulation
-
     if not isinstance(sim, Simulation):
         raise TypeError(f"save() needs an edmd2d.Simulation, got {type(sim).__name__}")
-    from . import __version__
-
     arrays: dict[str, np.ndarray] = {}
     state = {key: _encode(key, value, arrays) for key, value in sim.__getstate__().items()}
     header = {"format": FORMAT, "version": VERSION, "edmd2d": __version__, "state": state}
@@ -124,8 +123,6 @@ def load(path):
     OSError
         If it cannot be read.
     """
-    from .simulation import Simulation
-
     header, arrays = _read(path, arrays=True)
     try:
         state = {key: _decode(value, arrays) for key, value in header["state"].items()}
@@ -165,8 +162,6 @@ def read_metadata(path) -> dict:
 def _read(path, *, arrays: bool):
     """``(header, arrays)`` of a checkpoint file, checked as :func:`load` describes
     (``arrays`` empty unless asked for)."""
-    from . import __version__
-
     path = Path(path)
     out = {}
     try:
@@ -276,3 +271,31 @@ def _check_consistent(sim) -> None:
             raise ValueError(f"{name} has {len(getattr(sim, name))} rows, not {n}")
     if sorted(sim._order.tolist()) != list(range(n)):
         raise ValueError("the disk order is not a permutation")
+
+
+class Checkpoint(Operation):
+    """Write a checkpoint to ``path`` when ``trigger`` fires, replacing the previous
+    one atomically (see :func:`~edmd2d.checkpoint.save`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    trigger : Trigger
+    metadata : dict or callable, optional
+        Stored in the checkpoint (:func:`~edmd2d.checkpoint.save`); a callable is called with the
+        simulation at each firing and returns the dict, e.g. the state of a
+        :class:`~edmd2d.measurements.Measure` of the same run (list the Checkpoint
+        after the operations whose state it saves, so that it sees them at the same
+        stop).
+    """
+
+    def __init__(self, path, trigger: Trigger, *, metadata=None) -> None:
+        super().__init__(trigger)
+        if metadata is not None and not (callable(metadata) or isinstance(metadata, dict)):
+            raise TypeError(f"metadata must be a dict or a callable, got {metadata!r}")
+        self.path = path
+        self.metadata = metadata
+
+    def __call__(self, sim) -> None:
+        meta = self.metadata(sim) if callable(self.metadata) else self.metadata
+        save(sim, self.path, metadata=meta)

@@ -51,10 +51,12 @@ from pathlib import Path
 
 import numpy as np
 
-from . import __version__, _atomic
+from . import _atomic, ensemble
 from . import checkpoint as _checkpoint
 from . import config as _config
 from . import operations as _op
+from . import progress as _progress
+from ._version import __version__
 
 __all__ = ["main", "UserError", "CONFIG_FILE", "GSD_FILE", "CHECKPOINT_FILE",
            "RESULTS_FILE"]
@@ -354,8 +356,6 @@ class _Runner:
         status = "complete" if until >= meta["end"] else "stopped"
         try:
             if self.progress:
-                from . import progress as _progress
-
                 self.bar, _ = _progress.bar(True, total=until - sim.time, unit="time",
                                             desc="edmd2d")
             self.last_row = (_time.perf_counter(), sim.counts.collisions)
@@ -592,8 +592,6 @@ def _load_checkpoint(path: Path):
 
 # ------------------------------------------------------------------ sweep
 def _cmd_sweep(args) -> int:
-    from . import ensemble
-
     cfg = _config.load_sweep(args.config)
     out = args.output if args.output is not None else (
         args.config.parent / f"{args.config.stem}-sweep")

@@ -41,6 +41,7 @@ from . import progress as _progress
 from ._sums import weighted_sum
 from ._validate import as_positive_float
 from .measurements import container_area, kinetic_temperature
+from .simulation import Simulation
 from .theory import ETA_CLOSE_PACKED
 
 __all__ = ["compress", "Compression", "packing_fraction", "CLOSE_PACKING", "DEFAULT_MAX_PRESSURE"]
@@ -207,8 +208,6 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
     >>> jam.reached, 0.78 < jam.packing_fraction < 0.86
     ('jammed', True)
     """
-    from .simulation import Simulation
-
     if not isinstance(system, Simulation):
         raise TypeError(f"compress() needs an edmd2d.Simulation, got {type(system).__name__}")
     rate = as_positive_float("rate", rate)

@@ -65,8 +65,11 @@ from pathlib import Path
 
 import numpy as np
 
+from . import builders
 from ._validate import as_generator
+from .builders import make_gas, random_gas
 from .geometry import BOX_WALLS, Wall
+from .simulation import Simulation
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -759,10 +762,6 @@ def build(cfg: RunConfig, seed: int):
         If the library refuses a value (the message is the library's, with the key
         and line it comes from).
     """
-    from . import builders
-    from .builders import make_gas, random_gas
-    from .simulation import Simulation
-
     gas, model = cfg.data["gas"], cfg.data["model"]
     rng = as_generator("seed", seed)
     species = gas["species"]

@@ -50,9 +50,10 @@ import numpy as np
 
 from ._sums import dot
 from ._validate import as_float_array, as_positive_float, indices_where, per_disk
-from .analysis import _boxsize, _min_image, _simulation_type, _wrap
+from .analysis import _boxsize, _min_image, _wrap
 from .compress import DEFAULT_MAX_PRESSURE
-from .geometry import BOX_WALLS, Box
+from .geometry import BOX_WALLS, Box, as_walls
+from .simulation import Simulation
 
 __all__ = ["ContactNetwork", "contact_network", "contact_tolerance", "BOX_SIDES",
            "DEFAULT_TOL"]
@@ -352,7 +353,7 @@ def contact_tolerance(source, box: Box | None = None, *, radii=None, walls=None,
 # --------------------------------------------------------------------------- inputs
 def _inputs(source, box, radii, walls):
     """``(positions wrapped into the box, radii, box, segment end points (S, 2, 2))``."""
-    if isinstance(source, _simulation_type()):
+    if isinstance(source, Simulation):
         for name, value in (("box", box), ("radii", radii), ("walls", walls)):
             if value is not None:
                 raise TypeError(f"{name} must not be given with a Simulation (it has its own)")
@@ -372,9 +373,7 @@ def _inputs(source, box, radii, walls):
         rad = per_disk("radii", radii, len(pos))
         if (rad <= 0).any():
             raise ValueError(f"radii must be > 0; disks {indices_where(rad <= 0)} are not")
-        from .simulation import _as_walls
-
-        segs = _as_walls(walls)
+        segs = as_walls(walls)
     pos = _wrap(np.ascontiguousarray(pos, dtype=np.float64), box)
     ends = np.array([[w.start, w.end] for w in segs], dtype=np.float64).reshape(-1, 2, 2)
     return pos, np.asarray(rad, dtype=np.float64), box, ends

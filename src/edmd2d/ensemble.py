@@ -77,6 +77,13 @@ from pathlib import Path
 import numpy as np
 
 from . import _atomic
+from . import checkpoint as _checkpoint
+from . import config as _config
+from . import operations as _op
+from . import progress as _progress
+from ._version import __version__
+from .analysis import hexatic_order
+from .builders import make_gas
 
 __all__ = ["sweep", "grid", "load", "eos_task", "warm", "SweepResult", "FORMAT",
            "VERSION", "CSV_FILE", "JSON_FILE", "TASKS_DIR"]
@@ -348,8 +355,6 @@ def sweep(function, parameters, *, output, replicas: int = 1, seed=None, schedul
     KeyboardInterrupt
         On Ctrl-C, after the finished tasks are written (call again to resume).
     """
-    from . import progress as _progress
-
     if not callable(function):
         raise TypeError(f"function must be callable, got {function!r}")
     points = grid(parameters)
@@ -554,9 +559,6 @@ def warm() -> None:
     tasks use other physics (restitution, gravity, a thermostat) can pass its own
     ``warmup`` that runs a small system of that kind.
     """
-    from .analysis import hexatic_order
-    from .builders import make_gas
-
     for periodic in (True, False):
         sim = make_gas(16, 0.3, periodic=periodic, seed=0)
         sim.advance(until=0.2)
@@ -704,8 +706,6 @@ def _version(module: str) -> str | None:
 
 
 def _versions() -> dict:
-    from . import __version__
-
     return {"edmd2d": __version__, "numpy": np.__version__,
             "python": platform.python_version(), "platform": sys.platform}
 
@@ -756,11 +756,6 @@ def eos_task(parameters: dict, seed, workdir) -> dict:
     ValueError
         If ``workdir`` holds a checkpoint of other parameters.
     """
-    from . import checkpoint as _checkpoint
-    from . import config as _config
-    from . import operations as _op
-    from .analysis import hexatic_order
-
     cfg = _config.task_config(parameters)
     run, output = cfg.data["run"], cfg.data["output"]
     path = Path(workdir) / _EOS_CHECKPOINT

@@ -1,14 +1,19 @@
-"""Value objects for the container: the rectangular :class:`Box` and wall :class:`Wall` segments."""
+"""The container: the rectangular :class:`Box`, wall :class:`Wall` segments, the names of
+the box walls, and the area that closed polygons of segments enclose (:func:`container`)."""
 
 from __future__ import annotations
 
+import functools
+import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
+from ._sums import dot
 from ._validate import as_float_array, as_positive_float
 
-__all__ = ["Box", "Wall", "BOX_WALLS", "BOX_WALL_EQUATIONS"]
+__all__ = ["Box", "Wall", "BOX_WALLS", "BOX_WALL_EQUATIONS", "container"]
 
 #: The four walls of a box, in the order edmd2d numbers them everywhere (0 to 3: the
 #: walls at ``x = 0``, ``x = width``, ``y = 0``, ``y = height``, that is ``2 * axis``
@@ -169,3 +174,214 @@ class Wall:
         if closed:
             pairs.append((pts[-1], pts[0]))
         return [cls(a, b) for a, b in pairs]
+
+
+def as_walls(walls) -> list[Wall]:
+    """A ``walls`` argument as a list: ``None`` (none), one :class:`Wall` or an iterable
+    of them; ``TypeError`` naming what else was given."""
+    if walls is None:
+        return []
+    if isinstance(walls, Wall):
+        return [walls]
+    try:
+        items = list(walls)
+    except TypeError:
+        raise TypeError(f"walls must be an iterable of edmd2d.Wall, got {walls!r}") from None
+    for k, w in enumerate(items):
+        if not isinstance(w, Wall):
+            raise TypeError(f"walls[{k}] must be an edmd2d.Wall, got {type(w).__name__}")
+    return items
+
+
+# --------------------------------------------------------------------------- containers
+# End points of two wall segments closer than this fraction of the box's larger side
+# count as one vertex of a closed polygon (Wall.polygon repeats the vertex exactly;
+# hand-built walls may differ by rounding).
+_COINCIDE = 1e-9
+
+
+def container(box: Box, walls, centres: np.ndarray) -> tuple[float, str]:
+    """The area of the container that holds the points ``centres`` in ``box``, among
+    the wall segments ``walls``, and where it comes from.
+
+    Closed polygons are found among ``walls``: loops of segments
+    in which each end point coincides with that of exactly one other segment (to
+    within ``1e-9`` of the box's larger side, as ``Wall.polygon`` builds them), that
+    cross neither themselves nor each other.  They cut the box into regions: the inside
+    of a polygon less the polygons directly inside it, and the box less the outermost
+    polygons.  The result is the total area (shoelace formula) of the regions that
+    hold a point of ``centres``: the box's area when no polygon is closed, the
+    octagon's for a gas in an octagonal container, the octagon's less the triangle's
+    when a triangular obstacle stands inside it, the box's less the triangle's for a
+    gas around a closed obstacle.
+
+    Open polylines and segments that branch (an end point shared by three or more
+    segments) are left out: with the box walls or with each other they may close a
+    region that this function does not see (then pass ``area=`` to
+    :func:`edmd2d.measurements.measure`).  If two closed polygons cross or touch, no
+    area can be told from them: the box's area is used, with a warning.
+
+    Parameters
+    ----------
+    box : Box
+    walls : sequence of Wall
+    centres : ndarray, shape (P, 2)
+        The points whose regions count (the centres of the movable disks).
+
+    Returns
+    -------
+    area : float
+    source : {"box", "walls"}
+        ``"box"`` when no closed polygon bounds the regions of the points.
+    """
+    loops = _closed_loops(tuple(walls), _COINCIDE * max(box.width, box.height))
+    if not loops:
+        return box.area, "box"
+    areas = np.array([abs(_shoelace(v)) for v in loops])
+    # (Loops do not cross: one vertex tells whether a loop lies inside another.)
+    first = np.array([v[0] for v in loops])
+    inside = np.array([_inside_polygon(first, v) for v in loops])  # [a, b]: b inside a
+    np.fill_diagonal(inside, False)
+    # The region of a loop is its inside less that of its children: the loops inside
+    # it and inside no smaller loop that is inside it.
+    parent = np.full(len(loops), -1)
+    for b in range(len(loops)):
+        holders = np.flatnonzero(inside[:, b])
+        if len(holders):
+            parent[b] = holders[np.argmin(areas[holders])]
+    region = areas.copy()
+    outer = box.area
+    for b in range(len(loops)):
+        if parent[b] >= 0:
+            region[parent[b]] -= areas[b]
+        else:
+            outer -= areas[b]
+    # Each disk is in the region of the smallest loop that holds it (or outside all).
+    if len(centres) == 0:  # (no gas to hold: the box's area, as without containers)
+        return box.area, "box"
+    holds = np.array([_inside_polygon(centres, v) for v in loops])  # (loops, disks)
+    innermost = np.where(holds, areas[:, None], np.inf).argmin(axis=0)
+    innermost[~holds.any(axis=0)] = -1
+    occupied = np.unique(innermost)
+    total = sum(outer if k < 0 else float(region[k]) for k in occupied)
+    return float(total), "walls"
+
+
+@functools.lru_cache(maxsize=16)
+def _closed_loops(walls: tuple, tol: float) -> tuple[np.ndarray, ...]:
+    """The closed polygons among ``walls`` (see :func:`container_area`), each as its
+    vertices in order, shape (V, 2); none if two of them (or one with itself) cross
+    or touch.  (Cached: a simulation's walls never change, and :func:`measure` may
+    be called many times; the arrays returned are read-only.)"""
+    # Vertex ids: end points within tol of each other share one (grid of side tol,
+    # looked up in the 3 x 3 neighbouring cells).
+    cells: dict[tuple[int, int], list[int]] = {}
+    vertices: list[tuple[float, float]] = []
+    ends = []
+    for w in walls:
+        for x, y in (w.start, w.end):
+            key = (math.floor(x / tol), math.floor(y / tol))
+            found = next((v for dx in (-1, 0, 1) for dy in (-1, 0, 1)
+                          for v in cells.get((key[0] + dx, key[1] + dy), ())
+                          if abs(vertices[v][0] - x) <= tol
+                          and abs(vertices[v][1] - y) <= tol), -1)
+            if found < 0:
+                found = len(vertices)
+                vertices.append((x, y))
+                cells.setdefault(key, []).append(found)
+            ends.append(found)
+    edges = [(ends[2 * k], ends[2 * k + 1]) for k in range(len(walls))
+             if ends[2 * k] != ends[2 * k + 1]]
+    at: dict[int, list[int]] = {}
+    for e, (u, v) in enumerate(edges):
+        at.setdefault(u, []).append(e)
+        at.setdefault(v, []).append(e)
+    # Walk from each unvisited edge; a walk through vertices of two edges each that
+    # comes back to its start is a loop.
+    loops, loop_edges = [], []
+    seen = [False] * len(edges)
+    for e0 in range(len(edges)):
+        if seen[e0]:
+            continue
+        order, path = [edges[e0][0]], [e0]
+        seen[e0] = True
+        e, v, closed = e0, edges[e0][1], False
+        while len(at[v]) == 2:
+            if v == order[0]:
+                closed = True
+                break
+            order.append(v)
+            e = at[v][0] if at[v][1] == e else at[v][1]
+            if seen[e]:
+                break
+            seen[e] = True
+            path.append(e)
+            v = edges[e][1] if edges[e][0] == v else edges[e][0]
+        # (A walk that stops at an end point or a branch marks its edges seen: a loop
+        # through a branch point is not simple and is left out.)
+        if closed and len(order) >= 3 and len(at[order[0]]) == 2:
+            loop = np.array([vertices[u] for u in order])
+            loop.flags.writeable = False
+            loops.append(loop)
+            loop_edges.extend(edges[k] for k in path)
+    if not loops:
+        return ()
+    if _any_crossing(np.array(vertices), loop_edges):
+        warnings.warn(
+            "closed loops of wall segments cross or touch: the container's area cannot be "
+            "told from them, and the box's area is used; pass measure(area=...)",
+            stacklevel=5,
+        )
+        return ()
+    return tuple(loops)
+
+
+def _any_crossing(vertices: np.ndarray, edges) -> bool:
+    """Whether two of the segments ``edges`` (pairs of vertex ids) that share no vertex
+    cross or touch."""
+    u = np.array([e[0] for e in edges])
+    v = np.array([e[1] for e in edges])
+    a, b = vertices[u], vertices[v]
+
+    def orient(p, q, r):  # (p, q: (m, 1, 2); r: (1, n, 2))
+        return ((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1])
+                - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
+
+    lo, hi = np.minimum(a, b), np.maximum(a, b)
+    step = max(1, 2_000_000 // max(1, len(edges)))  # (rows per chunk: bounded memory)
+    for s in range(0, len(edges), step):
+        pa, pb = a[s:s + step, None], b[s:s + step, None]
+        qa, qb = a[None], b[None]
+        cross = ((orient(pa, pb, qa) * orient(pa, pb, qb) <= 0.0)
+                 & (orient(qa, qb, pa) * orient(qa, qb, pb) <= 0.0)
+                 # (collinear segments: the orientations vanish; overlap decides)
+                 & (lo[s:s + step, None] <= hi[None]).all(axis=-1)
+                 & (lo[None] <= hi[s:s + step, None]).all(axis=-1))
+        share = ((u[s:s + step, None] == u[None]) | (u[s:s + step, None] == v[None])
+                 | (v[s:s + step, None] == u[None]) | (v[s:s + step, None] == v[None]))
+        if (cross & ~share).any():
+            return True
+    return False
+
+
+def _shoelace(vertices: np.ndarray) -> float:
+    """Signed area of a polygon (positive when counterclockwise)."""
+    x, y = vertices[:, 0], vertices[:, 1]
+    return 0.5 * float(dot(x, np.roll(y, -1)) - dot(np.roll(x, -1), y))
+
+
+def _inside_polygon(points: np.ndarray, vertices: np.ndarray) -> np.ndarray:
+    """Whether each point (shape (P, 2)) lies inside the polygon (even-odd rule: a
+    ray towards +x crosses its sides an odd number of times)."""
+    x0, y0 = vertices[:, 0], vertices[:, 1]
+    x1, y1 = np.roll(x0, -1), np.roll(y0, -1)
+    out = np.zeros(len(points), bool)
+    step = max(1, 2_000_000 // len(vertices))  # (points per chunk: bounded memory)
+    for s in range(0, len(points), step):
+        px = points[s:s + step, 0:1]
+        py = points[s:s + step, 1:2]
+        spans = (y0 > py) != (y1 > py)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x_cross = x0 + (py - y0) * (x1 - x0) / (y1 - y0)
+        out[s:s + step] = (spans & (px < x_cross)).sum(axis=1) % 2 == 1
+    return out

@@ -8,25 +8,21 @@ equal sub-windows.
 
 from __future__ import annotations
 
-import functools
 import math
-import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from . import progress as _progress
+from ._facade import require_simulation
+from ._jsonable import decode, encode
+from ._operations import Blocks, Operation, Trigger, run
 from ._sums import dot, weighted_sum
 from ._validate import as_count, as_positive_float
+from .geometry import Box, Wall, container
 
-__all__ = ["Measurement", "measure", "kinetic_temperature", "degrees_of_freedom",
-           "container_area", "Cooling", "cooling"]
-
-# End points of two wall segments closer than this fraction of the box's larger side
-# count as one vertex of a closed polygon (Wall.polygon repeats the vertex exactly;
-# hand-built walls may differ by rounding).
-_COINCIDE = 1e-9
-
+__all__ = ["Measurement", "measure", "Measure", "kinetic_temperature",
+           "degrees_of_freedom", "container_area", "Cooling", "cooling"]
 
 @dataclass(frozen=True)
 class Measurement:
@@ -423,24 +419,218 @@ def measure(sim, duration: float, *, blocks: int = 10,
     >>> m.collisions == round(m.collision_rate * m.n * m.duration / 2)
     True
     """
-    from . import operations as _operations
-    from .simulation import Simulation
-
-    if not isinstance(sim, Simulation):
-        raise TypeError(f"measure() needs an edmd2d.Simulation, got {type(sim).__name__}")
+    require_simulation(sim, "measure()")
     duration = as_positive_float("duration", duration)
     blocks = as_count("blocks", blocks, minimum=1)
     if area is not None:
         area = as_positive_float("area", area)
-    window = _operations.Measure(_operations.Blocks(duration, blocks), area=area)
+    window = Measure(Blocks(duration, blocks), area=area)
     bar, owned = _progress.bar(progress, total=duration, unit="time", desc="measure")
     try:
-        _operations.run(sim, until=sim.time + duration, operations=[window],
+        run(sim, until=sim.time + duration, operations=[window],
                         progress=bar if bar is not None else False)
     finally:
         if owned:
             bar.close()
     return window.result()
+
+
+class Measure(Operation):
+    """Measure pressure, temperature, collision rates and wall forces over a run, in
+    blocks: the quantities of :func:`edmd2d.measurements.measure`.
+
+    The window opens when the run starts (or, with a
+    :class:`~edmd2d.operations.Blocks` trigger whose window starts later, when it
+    does), and each firing of ``trigger`` ends a block.
+    Nothing is sampled in between: the engine accumulates the collision virial and the
+    wall impulses exactly at every event, and the operation keeps these sums, the
+    temperatures and the counts at the block boundaries only.  :meth:`result` gives
+    the :class:`~edmd2d.measurements.Measurement` over the blocks ended so far, at any
+    time, so a table can show it growing.  A Measure used in a second run goes on with
+    the same window (the accumulated sums are cumulative).
+
+    With :class:`~edmd2d.operations.Blocks` the blocks have the length
+    ``duration / blocks`` exactly and the result is bit for bit that of
+    :func:`~edmd2d.measurements.measure`; with other triggers each block's length is
+    the time between its boundaries.
+
+    Parameters
+    ----------
+    trigger : Trigger
+        The ends of the blocks, e.g. ``Blocks(duration=50.0, blocks=10)`` or
+        ``Every(dt=5.0)``.
+    area : float, optional
+        The area of the pressure, > 0; default the container's
+        (:func:`edmd2d.measurements.container_area`, taken when the window opens).
+
+    Examples
+    --------
+    >>> import edmd2d as ed
+    >>> from edmd2d import operations as op
+    >>> sim = ed.make_gas(200, 0.3, seed=2)
+    >>> window = op.Measure(op.Blocks(duration=4.0, blocks=4))
+    >>> _ = sim.run(until=4.0, operations=[window])
+    >>> m = window.result()
+    >>> m.blocks, round(m.temperature, 9)
+    (4, 1.0)
+    >>> m.pressure == ed.make_gas(200, 0.3, seed=2).measure(duration=4.0, blocks=4).pressure
+    True
+    """
+
+    def __init__(self, trigger: Trigger, *, area: float | None = None) -> None:
+        super().__init__(trigger)
+        self._area = None if area is None else as_positive_float("area", area)
+        self._edges: list[dict] = []
+        self._meta: dict | None = None  # (n, n_all, dof, area, area_source) at the start
+        self._movable = None
+        self._box = None
+        self._walls = None
+
+    @property
+    def blocks(self) -> int:
+        """The number of blocks ended so far."""
+        return max(len(self._edges) - 1, 0)
+
+    @property
+    def times(self) -> np.ndarray:
+        """The block boundaries so far (the first is the window's start), shape (B + 1,)."""
+        return np.array([e["time"] for e in self._edges])
+
+    def begin(self, sim) -> None:
+        """Open the window at the run's start (or wait for the start of the window of
+        a :class:`~edmd2d.operations.Blocks` trigger), or check that a window already
+        open goes on with the same simulation.
+
+        Parameters
+        ----------
+        sim : Simulation
+
+        Raises
+        ------
+        ValueError
+            If the window of a :class:`~edmd2d.operations.Blocks` trigger started
+            before the run and nothing was measured then, or ``sim`` is not the
+            simulation measured so far.
+        """
+        self._box, self._walls = sim.box, sim.walls
+        self._movable = np.isfinite(sim.masses)
+        if self._edges:
+            if sim.time < self._edges[-1]["time"] or len(sim) != self._meta["n_all"]:
+                raise ValueError(
+                    f"this Measure's window has a boundary at t={self._edges[-1]['time']} "
+                    f"for {self._meta['n_all']} disks; the simulation (t={sim.time}, "
+                    f"{len(sim)} disks) is not the one it measured")
+            return
+        if isinstance(self.trigger, Blocks):
+            t0 = self.trigger.window_start
+            if t0 < sim.time:
+                raise ValueError(
+                    f"the window of this Measure starts at t={t0}, before the run's start "
+                    f"at t={sim.time}: nothing was measured there (give Blocks a start not "
+                    "before the run's, or continue a Measure made with Measure.from_state)")
+            if t0 > sim.time:
+                return  # (the trigger fires at the window's start)
+        self._open(sim)
+
+    def _open(self, sim) -> None:
+        if self._area is None:
+            area, source = _container(sim)
+        else:
+            area, source = self._area, "given"
+        n = int(self._movable.sum())
+        box = sim.box
+        self._meta = {"n": n, "n_all": len(sim), "area": area, "area_source": source,
+                      "dof": degrees_of_freedom(sim)[0],
+                      "box": [box.width, box.height, *box.periodic],
+                      "walls": [[*w.start, *w.end] for w in sim.walls]}
+        self._edges.append(_edge(sim, self._movable))
+
+    def __call__(self, sim) -> None:
+        if not self._edges:
+            self._open(sim)
+        else:
+            self._edges.append(_edge(sim, self._movable))
+
+    def result(self):
+        """The measurement over the blocks ended so far.
+
+        Returns
+        -------
+        Measurement
+
+        Raises
+        ------
+        ValueError
+            If no block has ended yet.
+        """
+        k = self.blocks
+        if k < 1:
+            raise ValueError("no block of this measurement has ended yet")
+        if isinstance(self.trigger, Blocks):
+            tau = self.trigger.duration / self.trigger.blocks
+            duration = self.trigger.elapsed(k)
+        else:
+            times = self.times
+            tau = np.diff(times)
+            duration = float(times[-1] - times[0])
+        meta = self._meta
+        return _from_edges(
+            self._edges, tau, duration, n=meta["n"], n_all=meta["n_all"], dof=meta["dof"],
+            area=meta["area"], area_source=meta["area_source"], box=self._box,
+            walls=self._walls)
+
+    def state(self) -> dict:
+        """What the measurement holds, in plain JSON-able values (floats kept exactly),
+        to go on in another process with :meth:`from_state` (e.g. in a checkpoint's
+        ``metadata``).
+
+        Returns
+        -------
+        dict
+        """
+        window = None
+        if isinstance(self.trigger, Blocks):
+            t = self.trigger
+            window = {"duration": t.duration, "blocks": t.blocks, "start": t.window_start,
+                      "count": t.count}
+        return {"edges": [encode(e) for e in self._edges], "meta": self._meta,
+                "area": self._area, "window": window}
+
+    @classmethod
+    def from_state(cls, state: dict, trigger: Trigger | None = None, *,
+                   count: int | None = None) -> Measure:
+        """A Measure that goes on from :meth:`state`.
+
+        Parameters
+        ----------
+        state : dict
+            From :meth:`state`.
+        trigger : Trigger, optional
+            Default: the :class:`~edmd2d.operations.Blocks` of the saved window, at its
+            start.
+        count : int, optional
+            With the default trigger, the number of blocks to end in all (default the
+            saved trigger's).
+
+        Returns
+        -------
+        Measure
+        """
+        if trigger is None:
+            window = state.get("window")
+            if window is None:
+                raise ValueError("this state has no window of Blocks: pass its trigger")
+            trigger = Blocks(
+                window["duration"], window["blocks"], start=window["start"],
+                count=window["count"] if count is None else count)
+        out = cls(trigger, area=state["area"])
+        out._edges = [decode(e) for e in state["edges"]]
+        out._meta = meta = state["meta"]
+        if meta is not None:  # (the box and walls: a result needs no simulation)
+            width, height, px, py = meta["box"]
+            out._box = Box(width, height, periodic=(px, py))
+            out._walls = tuple(Wall((x0, y0), (x1, y1)) for x0, y0, x1, y1 in meta["walls"])
+        return out
 
 
 def _edge(sim, movable: np.ndarray) -> dict:
@@ -604,24 +794,10 @@ def _frozen(values: np.ndarray) -> np.ndarray:
 
 # --------------------------------------------------------------------------- containers
 def container_area(sim) -> float:
-    """The area of the container that holds the movable disks of ``sim``.
-
-    Closed polygons are found among the simulation's wall segments: loops of segments
-    in which each end point coincides with that of exactly one other segment (to
-    within ``1e-9`` of the box's larger side, as ``Wall.polygon`` builds them), that
-    cross neither themselves nor each other.  They cut the box into regions: the inside
-    of a polygon less the polygons directly inside it, and the box less the outermost
-    polygons.  The result is the total area (shoelace formula) of the regions that
-    hold a movable disk's centre: the box's area when no polygon is closed, the
-    octagon's for a gas in an octagonal container, the octagon's less the triangle's
-    when a triangular obstacle stands inside it, the box's less the triangle's for a
-    gas around a closed obstacle.
-
-    Open polylines and segments that branch (an end point shared by three or more
-    segments) are left out: with the box walls or with each other they may close a
-    region that this function does not see (then pass ``area=`` to :func:`measure`).
-    If two closed polygons cross or touch, no area can be told from them: the box's
-    area is used, with a warning.  The area of immovable disks is not taken out.
+    """The area of the container that holds the movable disks of ``sim``: the box's,
+    or that of the regions bounded by closed polygons of its wall segments that hold
+    a movable disk's centre (the rules are those of :func:`edmd2d.geometry.container`).
+    The area of immovable disks is not taken out.
 
     Parameters
     ----------
@@ -646,161 +822,8 @@ def container_area(sim) -> float:
 
 
 def _container(sim) -> tuple[float, str]:
-    """``(area, source)`` of :func:`container_area`; ``source`` is ``"box"`` when no
-    closed polygon bounds the regions of the disks, else ``"walls"``."""
-    box = sim.box
-    loops = _closed_loops(tuple(sim.walls), _COINCIDE * max(box.width, box.height))
-    if not loops:
-        return box.area, "box"
-    areas = np.array([abs(_shoelace(v)) for v in loops])
-    # (Loops do not cross: one vertex tells whether a loop lies inside another.)
-    first = np.array([v[0] for v in loops])
-    inside = np.array([_inside_polygon(first, v) for v in loops])  # [a, b]: b inside a
-    np.fill_diagonal(inside, False)
-    # The region of a loop is its inside less that of its children: the loops inside
-    # it and inside no smaller loop that is inside it.
-    parent = np.full(len(loops), -1)
-    for b in range(len(loops)):
-        holders = np.flatnonzero(inside[:, b])
-        if len(holders):
-            parent[b] = holders[np.argmin(areas[holders])]
-    region = areas.copy()
-    outer = box.area
-    for b in range(len(loops)):
-        if parent[b] >= 0:
-            region[parent[b]] -= areas[b]
-        else:
-            outer -= areas[b]
-    # Each disk is in the region of the smallest loop that holds it (or outside all).
-    centres = sim.positions[np.isfinite(sim.masses)]
-    if len(centres) == 0:  # (no gas to hold: the box's area, as without containers)
-        return box.area, "box"
-    holds = np.array([_inside_polygon(centres, v) for v in loops])  # (loops, disks)
-    innermost = np.where(holds, areas[:, None], np.inf).argmin(axis=0)
-    innermost[~holds.any(axis=0)] = -1
-    occupied = np.unique(innermost)
-    total = sum(outer if k < 0 else float(region[k]) for k in occupied)
-    return float(total), "walls"
-
-
-@functools.lru_cache(maxsize=16)
-def _closed_loops(walls: tuple, tol: float) -> tuple[np.ndarray, ...]:
-    """The closed polygons among ``walls`` (see :func:`container_area`), each as its
-    vertices in order, shape (V, 2); none if two of them (or one with itself) cross
-    or touch.  (Cached: a simulation's walls never change, and :func:`measure` may
-    be called many times; the arrays returned are read-only.)"""
-    # Vertex ids: end points within tol of each other share one (grid of side tol,
-    # looked up in the 3 x 3 neighbouring cells).
-    cells: dict[tuple[int, int], list[int]] = {}
-    vertices: list[tuple[float, float]] = []
-    ends = []
-    for w in walls:
-        for x, y in (w.start, w.end):
-            key = (math.floor(x / tol), math.floor(y / tol))
-            found = next((v for dx in (-1, 0, 1) for dy in (-1, 0, 1)
-                          for v in cells.get((key[0] + dx, key[1] + dy), ())
-                          if abs(vertices[v][0] - x) <= tol
-                          and abs(vertices[v][1] - y) <= tol), -1)
-            if found < 0:
-                found = len(vertices)
-                vertices.append((x, y))
-                cells.setdefault(key, []).append(found)
-            ends.append(found)
-    edges = [(ends[2 * k], ends[2 * k + 1]) for k in range(len(walls))
-             if ends[2 * k] != ends[2 * k + 1]]
-    at: dict[int, list[int]] = {}
-    for e, (u, v) in enumerate(edges):
-        at.setdefault(u, []).append(e)
-        at.setdefault(v, []).append(e)
-    # Walk from each unvisited edge; a walk through vertices of two edges each that
-    # comes back to its start is a loop.
-    loops, loop_edges = [], []
-    seen = [False] * len(edges)
-    for e0 in range(len(edges)):
-        if seen[e0]:
-            continue
-        order, path = [edges[e0][0]], [e0]
-        seen[e0] = True
-        e, v, closed = e0, edges[e0][1], False
-        while len(at[v]) == 2:
-            if v == order[0]:
-                closed = True
-                break
-            order.append(v)
-            e = at[v][0] if at[v][1] == e else at[v][1]
-            if seen[e]:
-                break
-            seen[e] = True
-            path.append(e)
-            v = edges[e][1] if edges[e][0] == v else edges[e][0]
-        # (A walk that stops at an end point or a branch marks its edges seen: a loop
-        # through a branch point is not simple and is left out.)
-        if closed and len(order) >= 3 and len(at[order[0]]) == 2:
-            loop = np.array([vertices[u] for u in order])
-            loop.flags.writeable = False
-            loops.append(loop)
-            loop_edges.extend(edges[k] for k in path)
-    if not loops:
-        return ()
-    if _any_crossing(np.array(vertices), loop_edges):
-        warnings.warn(
-            "closed loops of wall segments cross or touch: the container's area cannot be "
-            "told from them, and the box's area is used; pass measure(area=...)",
-            stacklevel=4,
-        )
-        return ()
-    return tuple(loops)
-
-
-def _any_crossing(vertices: np.ndarray, edges) -> bool:
-    """Whether two of the segments ``edges`` (pairs of vertex ids) that share no vertex
-    cross or touch."""
-    u = np.array([e[0] for e in edges])
-    v = np.array([e[1] for e in edges])
-    a, b = vertices[u], vertices[v]
-
-    def orient(p, q, r):  # (p, q: (m, 1, 2); r: (1, n, 2))
-        return ((q[..., 0] - p[..., 0]) * (r[..., 1] - p[..., 1])
-                - (q[..., 1] - p[..., 1]) * (r[..., 0] - p[..., 0]))
-
-    lo, hi = np.minimum(a, b), np.maximum(a, b)
-    step = max(1, 2_000_000 // max(1, len(edges)))  # (rows per chunk: bounded memory)
-    for s in range(0, len(edges), step):
-        pa, pb = a[s:s + step, None], b[s:s + step, None]
-        qa, qb = a[None], b[None]
-        cross = ((orient(pa, pb, qa) * orient(pa, pb, qb) <= 0.0)
-                 & (orient(qa, qb, pa) * orient(qa, qb, pb) <= 0.0)
-                 # (collinear segments: the orientations vanish; overlap decides)
-                 & (lo[s:s + step, None] <= hi[None]).all(axis=-1)
-                 & (lo[None] <= hi[s:s + step, None]).all(axis=-1))
-        share = ((u[s:s + step, None] == u[None]) | (u[s:s + step, None] == v[None])
-                 | (v[s:s + step, None] == u[None]) | (v[s:s + step, None] == v[None]))
-        if (cross & ~share).any():
-            return True
-    return False
-
-
-def _shoelace(vertices: np.ndarray) -> float:
-    """Signed area of a polygon (positive when counterclockwise)."""
-    x, y = vertices[:, 0], vertices[:, 1]
-    return 0.5 * float(dot(x, np.roll(y, -1)) - dot(np.roll(x, -1), y))
-
-
-def _inside_polygon(points: np.ndarray, vertices: np.ndarray) -> np.ndarray:
-    """Whether each point (shape (P, 2)) lies inside the polygon (even-odd rule: a
-    ray towards +x crosses its sides an odd number of times)."""
-    x0, y0 = vertices[:, 0], vertices[:, 1]
-    x1, y1 = np.roll(x0, -1), np.roll(y0, -1)
-    out = np.zeros(len(points), bool)
-    step = max(1, 2_000_000 // len(vertices))  # (points per chunk: bounded memory)
-    for s in range(0, len(points), step):
-        px = points[s:s + step, 0:1]
-        py = points[s:s + step, 1:2]
-        spans = (y0 > py) != (y1 > py)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            x_cross = x0 + (py - y0) * (x1 - x0) / (y1 - y0)
-        out[s:s + step] = (spans & (px < x_cross)).sum(axis=1) % 2 == 1
-    return out
+    """``(area, source)`` of :func:`container_area` (see :func:`edmd2d.geometry.container`)."""
+    return container(sim.box, sim.walls, sim.positions[np.isfinite(sim.masses)])
 
 
 @dataclass(frozen=True)
@@ -875,4 +898,3 @@ def cooling(sim, times) -> Cooling:
                      lost - e0))
     cols = np.array(rows).T
     return Cooling(t.copy(), cols[0], cols[1], cols[2], cols[3])
-

@@ -10,6 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from . import _operations
+from . import measurements as _measurements
 from . import models as _models
 from . import progress as _progress
 from ._engine import aligned_rows
@@ -19,9 +21,10 @@ from ._engine import layout as _layout
 from ._engine import loop as _loop
 from ._engine import overlap as _overlap
 from ._engine import queue as _queue
+from ._facade import SimulationBase
 from ._sums import dot, weighted_sum
 from ._validate import as_count, as_float_array, as_generator, indices_where, per_disk
-from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, MAX_LENGTH, Box, Wall
+from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, MAX_LENGTH, Box, Wall, as_walls
 
 __all__ = ["Simulation", "Counts"]
 
@@ -91,7 +94,7 @@ class Counts:
     redraws: int = 0
 
 
-class Simulation:
+class Simulation(SimulationBase):
     """An exact event-driven simulation of hard disks in a rectangular box.
 
     Disks move on straight lines between collisions (on parabolas under ``gravity``).
@@ -249,7 +252,7 @@ class Simulation:
             raise ValueError(f"masses must be at least {np.finfo(np.float64).tiny:.3g} (a "
                              f"normal float64, whose inverse is finite); disks "
                              f"{indices_where(tiny)} are not")
-        wall_list = _as_walls(walls)
+        wall_list = as_walls(walls)
         t0 = as_float_array("time", time, ())
         self._box = box
         self._walls = tuple(wall_list)
@@ -942,8 +945,6 @@ class Simulation:
         >>> len(energies)
         3
         """
-        from . import operations as _operations
-
         return _operations.run(self, until=until, collisions=collisions,
                                operations=operations, progress=progress)
 
@@ -1247,12 +1248,10 @@ class Simulation:
         >>> round(ed.kinetic_temperature(sim), 12)
         2.0
         """
-        from .measurements import degrees_of_freedom
-
         kt = float(as_float_array("temperature", temperature, ()))
         if not kt > 0.0:
             raise ValueError(f"temperature must be > 0, got {kt}")
-        dof, conserved = degrees_of_freedom(self)
+        dof, conserved = _measurements.degrees_of_freedom(self)
         vel = self.velocities
         movable = np.isfinite(self.masses)
         mass = self.masses[movable]
@@ -1423,9 +1422,7 @@ class Simulation:
         -------
         Measurement
         """
-        from .measurements import measure
-
-        return measure(self, duration, **kwargs)
+        return _measurements.measure(self, duration, **kwargs)
 
     # ------------------------------------------------------------------ hooks
     def _accumulators(self) -> dict:
@@ -1651,18 +1648,3 @@ def _as_gravity(gravity):
     if not (g != 0.0).any():
         return None  # (the straight-line engine: the same flights, faster)
     return g
-
-
-def _as_walls(walls) -> list[Wall]:
-    if walls is None:
-        return []
-    if isinstance(walls, Wall):
-        return [walls]
-    try:
-        items = list(walls)
-    except TypeError:
-        raise TypeError(f"walls must be an iterable of edmd2d.Wall, got {walls!r}") from None
-    for k, w in enumerate(items):
-        if not isinstance(w, Wall):
-            raise TypeError(f"walls[{k}] must be an edmd2d.Wall, got {type(w).__name__}")
-    return items

@@ -22,6 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..simulation import EVENT_DTYPE
+
 __all__ = ["EventWriter", "read"]
 
 _HEADER = "time,kind,disk,partner,impulse\n"
@@ -90,8 +92,6 @@ def read(path) -> np.ndarray:
     ValueError
         For a file that does not start with the event file's header line.
     """
-    from ..simulation import EVENT_DTYPE
-
     with open(path, encoding="ascii") as f:
         header = f.readline()
         if header != _HEADER:

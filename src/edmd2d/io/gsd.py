@@ -44,9 +44,11 @@ import numpy as np
 
 from .. import measurements as _measurements
 from .._atomic import umask_mode
+from .._operations import Operation, Trigger
 from ..geometry import Box, Wall
+from ..simulation import Simulation
 
-__all__ = ["Writer", "record", "read"]
+__all__ = ["Writer", "WriteGSD", "record", "read"]
 
 
 def _gsd_hoomd():
@@ -111,8 +113,6 @@ class Writer:
         TypeError
             For anything but a :class:`~edmd2d.Simulation`.
         """
-        from ..simulation import Simulation
-
         if not isinstance(sim, Simulation):
             raise TypeError(f"write() needs an edmd2d.Simulation, got {type(sim).__name__}")
         self._file.append(_frame(sim, self))
@@ -293,8 +293,6 @@ def read(path, frame: int = -1, *, radius_scale: float = 1.0, **physics):
     walls = [Wall(tuple(row[:2] + centre), tuple(row[2:] + centre))
              for row in log.get("edmd2d/walls", np.zeros((0, 4))).reshape(-1, 4)]
     time = float(log["edmd2d/time"][0]) if "edmd2d/time" in log else 0.0
-    from ..simulation import Simulation
-
     try:
         return Simulation(pos, vel, radius, mass, box=box, walls=walls, time=time,
                           **physics)
@@ -306,3 +304,26 @@ def read(path, frame: int = -1, *, radius_scale: float = 1.0, **physics):
             "a dense frame can overlap by about 1e-7 of a diameter when read back: "
             "read(..., radius_scale=1 - 1e-6) shrinks them by that much (exact restarts "
             "go through edmd2d.checkpoint)") from None
+
+
+class WriteGSD(Operation):
+    """Append a frame to the GSD file ``path`` when ``trigger`` fires (see
+    :class:`~edmd2d.io.gsd.Writer`).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+    trigger : Trigger
+    mode : {"w", "a"}, default "w"
+        Create the file (replacing one that exists) or append to it.
+    """
+
+    def __init__(self, path, trigger: Trigger, mode: str = "w") -> None:
+        super().__init__(trigger)
+        self.writer = Writer(path, mode)
+
+    def __call__(self, sim) -> None:
+        self.writer.write(sim)
+
+    def close(self) -> None:
+        self.writer.close()

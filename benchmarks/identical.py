@@ -231,7 +231,7 @@ def main(argv=None) -> int:
         values = {rev: results[rev].get(name) for rev in args.revisions}
         same = len(set(values.values())) == 1
         bad += not same
-        print(f"{name:>16}  {'identical' if same else 'DIFFERENT'}  {values[first][:16]}")
+        print(f"{name:>20}  {'identical' if same else 'DIFFERENT'}  {values[first][:16]}")
     print(f"{len(results[first]) - bad} of {len(results[first])} systems bit-identical "
           f"across {', '.join(args.revisions)}")
     return 1 if bad else 0

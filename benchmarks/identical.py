@@ -12,7 +12,14 @@ The systems: 48 small random systems of every box kind (periodic, walled, mixed)
 and without wall segments and a fixed peg, run to t = 3; a 2 000-disk gas with the
 lookahead forced on (it is a hint and must change nothing); a walled gas in a polygon
 container; and a 10^4-disk periodic gas run for 20 collisions per disk (which includes
-a Z-order re-sort of the rows).  Exit status 1 if any digest differs.
+a Z-order re-sort of the rows).  Then each physics family, alone and combined, compared
+on the engine's whole state row table, its tallies and the physics model's per-disk
+state besides the above: gravity (elastic, and inelastic with a wall restitution, where
+disks come to rest on the floor; small random walled systems with a fixed peg), restitution
+with the TC model (a scalar coefficient, and a table of two species with wall segments),
+the thermostat (elastic and inelastic), heated box walls and segments, all of them at
+once, and growth (a growing gas, and a compression by ``edmd2d.compress``).
+Exit status 1 if any digest differs.
 """
 
 from __future__ import annotations
@@ -114,6 +121,88 @@ sim = ed.make_gas(10_000, 0.5, seed=1)
 sim._record_events(300_000)
 sim.advance(collisions=200_000)
 out["gas-10000"] = digest(sim)
+
+def physics_digest(sim):
+    # Besides digest(): the whole state rows (with the supports under gravity), every
+    # tally, and the model's per-disk state and random stream.
+    h = hashlib.sha256(digest(sim).encode())
+    for arr in (sim._S, sim._acc, sim._wacc, sim._counts):
+        h.update(np.ascontiguousarray(arr).tobytes())
+    m = sim._model
+    if m is not None:
+        for arr in (m.t_last, m.streak, m.thermo, m.cursor, m.buffer):
+            h.update(np.ascontiguousarray(arr).tobytes())
+    return h.hexdigest()
+
+def run_physics(name, sim, **advance):
+    # (An inelastic collapse under gravity, a disk at rest on a disk, stops the run with
+    # the state as it was before that event: a result to compare like any other.)
+    sim._record_events(200_000)
+    try:
+        sim.advance(**advance)
+        stop = ""
+    except RuntimeError as exc:
+        stop = str(exc)
+    out[name] = hashlib.sha256((physics_digest(sim) + stop).encode()).hexdigest()
+
+def walled(**kw):
+    return ed.make_gas(300, 0.3, periodic=False, **kw)
+
+run_physics("gravity", walled(gravity=(0.0, -1.0), seed=5), collisions=20_000)
+run_physics("gravity-tilted", ed.make_gas(300, 0.3, periodic=(True, False),
+            gravity=(0.3, -2.0), seed=6), collisions=20_000)
+run_physics("gravity-inelastic", walled(gravity=(0.0, -1.0), restitution=0.8,
+            wall_restitution=0.7, seed=7), collisions=20_000)
+run_physics("restitution-tc", ed.make_gas(500, 0.4, restitution=0.9, tc=1e-3, seed=8),
+            collisions=20_000)
+g = ed.make_gas(300, 0.3, periodic=False, seed=9)
+w, hgt = g.box.width, g.box.height
+seg = [ed.Wall((0.5 * w, 0.3 * hgt), (0.5 * w, 0.7 * hgt))]
+keep = [k for k in range(len(g)) if abs(g.positions[k, 0] - 0.5 * w) > 1.0]
+table = np.array([[0.95, 0.8], [0.8, 0.6]])
+run_physics("restitution-table", ed.Simulation(
+    g.positions[keep], g.velocities[keep], g.radii[keep], box=g.box, walls=seg,
+    species=np.arange(len(keep)) % 2, restitution=table, wall_restitution=0.9, tc=1e-4),
+    collisions=20_000)
+run_physics("thermostat", ed.make_gas(400, 0.35, thermostat=(1.5, 0.05), seed=10),
+            collisions=20_000)
+run_physics("thermostat-inelastic", ed.make_gas(400, 0.35, thermostat=(1.0, 0.1),
+            restitution=0.9, seed=11), collisions=20_000)
+run_physics("heated-walls", walled(wall_temperatures={"left": 2.0, "right": 0.5},
+            seed=12), collisions=20_000)
+g = walled(seed=13)
+keep = [k for k in range(len(g)) if abs(g.positions[k, 0] - 0.5 * w) > 1.0]
+run_physics("heated-segment", ed.Simulation(
+    g.positions[keep], g.velocities[keep], g.radii[keep], box=g.box, walls=seg,
+    wall_temperatures={0: 1.5, "bottom": 2.0}, seed=14), collisions=20_000)
+run_physics("everything", walled(gravity=(0.0, -0.5), restitution=0.9,
+            wall_restitution=0.8, wall_temperatures={"bottom": 3.0},
+            thermostat=(1.0, 0.02), seed=15), collisions=20_000)
+for seed in range(12):
+    rng = np.random.default_rng(100 + seed)
+    box = ed.Box(rng.uniform(3.0, 7.0), rng.uniform(3.0, 7.0), periodic=(seed % 2 == 0, False))
+    pos, vel, rad, mass = random_system(rng, int(rng.integers(3, 10)), box, [])
+    mass[0] = np.inf  # a fixed peg: a parabola against a point
+    vel[0] = 0.0
+    e = 1.0 if seed % 3 == 0 else 0.85
+    run_physics(f"gravity-small-{seed}", ed.Simulation(
+        pos, vel, rad, mass, box=box, gravity=(0.2 * (seed % 4 - 1.5), -1.0),
+        restitution=e, wall_restitution=e), until=20.0)
+g = ed.make_gas(400, 0.3, seed=16)
+run_physics("growth", ed.Simulation(g.positions, g.velocities, g.radii, box=g.box,
+            growth=2e-3), collisions=20_000)
+g = walled(seed=17)
+keep = [k for k in range(len(g)) if abs(g.positions[k, 0] - 0.5 * w) > 1.0]
+run_physics("growth-walled", ed.Simulation(
+    g.positions[keep], g.velocities[keep], g.radii[keep], box=g.box, walls=seg,
+    growth=1e-3), collisions=20_000)
+res = ed.compress(ed.make_gas(200, 0.3, seed=18), 0.6, rate=0.01)
+h = hashlib.sha256()
+for arr in (res.times, res.packing_fractions, res.reduced_pressures, res.temperatures,
+            res.collisions, res.simulation.positions, res.simulation.velocities,
+            res.simulation.radii):
+    h.update(np.ascontiguousarray(arr).tobytes())
+out["compress"] = h.hexdigest()
 print(json.dumps(out))
 """
 
@@ -142,7 +231,7 @@ def main(argv=None) -> int:
         values = {rev: results[rev].get(name) for rev in args.revisions}
         same = len(set(values.values())) == 1
         bad += not same
-        print(f"{name:>16}  {'identical' if same else 'DIFFERENT'}  {values[first][:16]}")
+        print(f"{name:>20}  {'identical' if same else 'DIFFERENT'}  {values[first][:16]}")
     print(f"{len(results[first]) - bad} of {len(results[first])} systems bit-identical "
           f"across {', '.join(args.revisions)}")
     return 1 if bad else 0

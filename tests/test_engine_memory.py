@@ -32,7 +32,7 @@ def test_state_and_bookkeeping_rows_stay_aligned(n):
 # Where each per-disk column sits inside its table's row: (table, byte offset, dtype)
 _VIEW_OFFSETS = {"_stamp": ("_S", 48, "<i4"), "_nxt": ("_S", 52, "<i4"),
                  "_prv": ("_S", 56, "<i4"), "_qt": ("_E", 32, "<f8"),
-                 "_tc": ("_E", 40, "<f8"), "_invm": ("_E", 48, "<f8")}
+                 "_tcand": ("_E", 40, "<f8"), "_invm": ("_E", 48, "<f8")}
 
 
 def _view_offsets(sim):
@@ -273,7 +273,7 @@ def test_lookahead_kernel_writes_nothing_but_its_notes(periodic):
 
     sim = ed.make_gas(800, 0.5, periodic=periodic, seed=seed_of(6))
     sim.advance(collisions=2000)
-    arrays = (sim._S, sim._E, sim._qt, sim._tc, sim._gi, sim._head, sim._qhead)
+    arrays = (sim._S, sim._E, sim._qt, sim._tcand, sim._gi, sim._head, sim._qhead)
     before = [a.copy() for a in arrays]
     mask = int(sim._qs[queue.MASK])
     for cur in range(int(sim._qs[queue.CUR]), int(sim._qs[queue.CUR]) + mask + 2):
@@ -319,7 +319,7 @@ def test_heap_staging_gives_each_waiting_event_its_next_stage():
 
     sim = ed.make_gas(800, 0.5, seed=seed_of(6))
     sim.advance(collisions=2000)
-    arrays = (sim._S, sim._E, sim._qt, sim._tc, sim._gi, sim._head)
+    arrays = (sim._S, sim._E, sim._qt, sim._tcand, sim._gi, sim._head)
     disks = np.arange(0, 800, 80)  # ten disks (stand-ins for a heap)
     hv = disks.astype(np.int32)
     given = [0, 0, 0b0010, 0b0110, 0b1110, 0b1010, 0, 0, 0, 0]

@@ -204,7 +204,7 @@ def test_queue_leaves_the_loops_columns_alone():
     qt, ql = arrays[0], arrays[1]
     floats = ql.view(np.float64)
     ql[:, :q.NEXT] = 12345
-    floats[:, layout.E_TC] = 7.5
+    floats[:, layout.E_TCAND] = 7.5
     floats[:, layout.E_INVM] = 0.25
     rng = np.random.default_rng(seed_of(1))
     q.build(0.0, rng.exponential(1.0, n), *arrays)
@@ -212,7 +212,7 @@ def test_queue_leaves_the_loops_columns_alone():
         i = q.top(*arrays)
         q.set_time(i, qt[i] + rng.exponential(1.0), *arrays)
     assert (ql[:, :q.NEXT] == 12345).all()
-    assert (floats[:, layout.E_TC] == 7.5).all() and (floats[:, layout.E_INVM] == 0.25).all()
+    assert (floats[:, layout.E_TCAND] == 7.5).all() and (floats[:, layout.E_INVM] == 0.25).all()
 
 
 def test_first_names_the_list_just_moved_into_the_heap():

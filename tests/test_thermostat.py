@@ -228,3 +228,15 @@ def test_make_gas_builds_the_physics_and_seeds_its_random_numbers():
     assert np.array_equal(a.velocities, b.velocities)
     assert a.restitution.tolist() == [[0.9]] and a.thermostat == (1.0, 0.1)
     assert a.wall_temperatures == {"bottom": 3.0} and a.counts.redraws > 0
+
+
+@pytest.mark.parametrize("physics", [{}, {"restitution": 0.9},
+                                     {"wall_temperatures": {"left": 1.0}}])
+def test_disks_at_rest_without_a_thermostat_have_no_further_event(physics):
+    # Without a thermostat no redraw is ever due, not even at t = inf: resting disks
+    # run out of events whatever else the physics holds, at the time they stand still.
+    sim = ed.Simulation([[2.0, 2.0], [5.0, 5.0]], [[0.0, 0.0], [0.0, 0.0]], 0.5,
+                        box=ed.Box(10.0, 10.0, periodic=False), **physics)
+    with pytest.raises(RuntimeError, match="no further event can ever happen"):
+        sim.advance(collisions=1)
+    assert sim.time == 0.0 and sim.counts.redraws == 0

@@ -5,8 +5,8 @@ A model changes what a contact does to the disks' velocities.
 ``wall_restitution=``, ``tc=``); elastic disks need none and run the engine's default
 (fastest) path.  A model holds its parameters and any per-disk state it needs (kept in
 the engine's internal row order: :meth:`Model.permuted` follows the engine's
-re-sorts), and hands the compiled engine one tuple (:meth:`Model.engine_params`),
-whose functions are in ``_engine/response.py``.
+re-sorts), and hands the compiled engine its physics families as named tuples
+(:meth:`Model.engine_families`), whose functions are in ``_engine/response.py``.
 
 Restitution and the TC model
 ----------------------------
@@ -51,6 +51,7 @@ import math
 
 import numpy as np
 
+from ._engine import layout as _layout
 from ._engine import response as _response
 from ._validate import as_float_array
 
@@ -174,18 +175,27 @@ class Model:
             return None
         return float(self.thermo[0]), float(self.thermo[1]) / len(self.species)
 
-    def engine_params(self) -> tuple:
-        """The tuple the compiled engine reads (see ``_engine/response.py``).
+    def engine_families(self) -> _layout.ModelFamilies:
+        """The physics families the compiled engine reads (see ``_engine/response.py``),
+        each ``None`` when the model does not use it.
 
         Returns
         -------
-        tuple
-            ``(table, species, wall, tc, t_last, streak, hold, wall_kt, thermo,
-            buffer, cursor)``: the model's own arrays, not copies, so that the
-            engine's updates of the per-disk state are the model's.
+        edmd2d._engine.layout.ModelFamilies
+            ``(contact, heated, thermostat, uniforms)``: restitution and the TC model
+            (always present), the heated walls (if any wall is heated), the thermostat
+            (if it redraws) and the random numbers (if either of those draws).  They
+            hold the model's own arrays, not copies, so that the engine's updates of the
+            per-disk state, the clock of the next redraw and the cursor are the model's.
         """
-        return (self.table, self.species, self.wall, self.tc, self.t_last, self.streak,
-                self.hold, self.wall_kt, self.thermo, self.buffer, self.cursor)
+        contact = _layout.Contact(self.table, self.species, float(self.wall), float(self.tc),
+                                  self.t_last, self.streak, float(self.hold))
+        heated = (_layout.HeatedWalls(self.wall_kt) if bool((self.wall_kt > 0.0).any())
+                  else None)
+        thermostat = (_layout.Thermostat(float(self.thermo[0]), float(self.thermo[1]),
+                                         self.thermo[2:]) if self.thermo[1] > 0.0 else None)
+        uniforms = _layout.Uniforms(self.buffer, self.cursor) if len(self.buffer) else None
+        return _layout.ModelFamilies(contact, heated, thermostat, uniforms)
 
     def permuted(self, perm: np.ndarray) -> Model:
         """A copy that follows a re-sort of the engine's rows; ``self`` is left as it

@@ -54,6 +54,8 @@ _REORDER_EVENTS_PER_DISK = 20
 # Under growth the grid is built for a largest diameter this much above the current one,
 # and rebuilt when the disks reach it (an O(N) rebuild every 10% of growth).
 _GROWTH_GRID_SLACK = 1.1
+# The engine's physics families of elastic disks between reflecting walls: none.
+_NO_MODEL = _layout.ModelFamilies(None, None, None, None)
 
 _KIND_NAMES = {_layout.DISK: "disk", _layout.SEGMENT: "wall", _layout.BOX: "box",
                _layout.KICK: "thermostat"}
@@ -276,11 +278,12 @@ class Simulation(SimulationBase):
                 raise ValueError(
                     f"cell_size must be at least the largest diameter {dmax}, got {cell_size}"
                 )
-        model = _build_model(species, restitution, wall_restitution, tc, rad, vel, mass,
-                             _wall_temperatures(wall_temperatures, box, len(wall_list)),
-                             _thermostat(thermostat), seed, float(t0))
+        user_species, model = _build_model(
+            species, restitution, wall_restitution, tc, rad, vel, mass,
+            _wall_temperatures(wall_temperatures, box, len(wall_list)),
+            _thermostat(thermostat), seed, float(t0))
         if growth is not None:
-            _check_growth_physics(model[1], self._gravity)
+            _check_growth_physics(model, self._gravity)
 
         # Per-disk state and bookkeeping, one 64-byte row each in S and E (see
         # _engine/layout.py for the columns).
@@ -291,13 +294,14 @@ class Simulation(SimulationBase):
         state[:, _layout.T] = float(t0)
         state[:, _layout.R] = rad
         # E: the bookkeeping table (cell, kept candidate, queue links and time).
-        queue = _queue.allocate(n)
+        _, table, hv, qhead, qs, qf = _queue.allocate(n)
         self._mass = mass
         self._time = float(t0)
-        vars(self).update(self._tables(state, *queue[1:]))  # (the stamps start at 0)
+        # (The stamps start at 0.)
+        vars(self).update(self._tables(state, table, hv, qhead, qs, qf))
         with np.errstate(divide="ignore"):
             self._invm[:] = np.where(np.isinf(mass), 0.0, 1.0 / mass)
-        self._tc[:] = np.inf
+        self._tcand[:] = np.inf
         # Image counters stay int64: a fast disk in a small periodic box can wrap more
         # than 2^31 times in a long run.
         self._image = np.zeros((n, 2), np.int64)
@@ -313,10 +317,10 @@ class Simulation(SimulationBase):
         self._growth = None if growth is None else np.array([growth, float(t0)])
         self._build_grid(pos, self._grid_diameter(dmax), cell_size)
         self._check_overlaps(pos, rad)
-        _layout.support_view(state)[:] = self._resting(pos, vel, rad, mass, model[1])
+        _layout.support_view(state)[:] = self._resting(pos, vel, rad, mass, model)
 
-        self._species = None if species is None else model[0]
-        self._model = model[1]
+        self._species = None if species is None else user_species
+        self._model = model
         self._counts = np.zeros(_layout.N_COUNTS, np.int64)
         self._acc = np.zeros(_layout.N_ACC, np.float64)
         self._set_log(0)
@@ -366,9 +370,10 @@ class Simulation(SimulationBase):
     def _growth_factor(self, t: float) -> float:
         """The factor by which every radius at ``t`` exceeds its stored value (1 without
         growth; the engine's ``scan.growth_factor``)."""
-        if self._growth is None:
+        growth = self._growth_bundle()
+        if growth is None:
             return 1.0
-        return 1.0 + float(self._growth[0]) * (t - float(self._growth[1]))
+        return 1.0 + growth.rate * (t - growth.t0)
 
     def _grid_diameter(self, dmax: float) -> float:
         """The largest diameter to build the grid for, the current one being ``dmax``:
@@ -384,9 +389,9 @@ class Simulation(SimulationBase):
 
     def _time_of_diameter(self, diameter: float) -> float:
         """Under growth, the time at which the largest diameter reaches ``diameter``."""
-        rate, t0 = float(self._growth[0]), float(self._growth[1])
+        growth = self._growth_bundle()
         d0 = 2.0 * float(self._S[:, _layout.R].max())
-        return t0 + (diameter / d0 - 1.0) / rate  # (rate > 0: see _as_growth)
+        return growth.t0 + (diameter / d0 - 1.0) / growth.rate  # (rate > 0: _as_growth)
 
     def _regrid(self) -> None:
         """Under growth, once the largest diameter has reached the one the grid was
@@ -402,7 +407,8 @@ class Simulation(SimulationBase):
     def growth(self) -> float | None:
         """The growth rate of the radii (see :meth:`set_growth`), ``None`` if they are
         fixed."""
-        return None if self._growth is None else float(self._growth[0])
+        growth = self._growth_bundle()
+        return None if growth is None else growth.rate
 
     def set_growth(self, rate: float | None) -> None:
         """Let every radius grow linearly in time from now on, or stop it growing.
@@ -583,7 +589,7 @@ class Simulation(SimulationBase):
 
     # ------------------------------------------------------------------ engine calls
     # Per-disk columns that are views into the rows of _S and _E (loop.row_views).
-    _ROW_VIEWS = ("_stamp", "_nxt", "_prv", "_qt", "_tc", "_invm")
+    _ROW_VIEWS = ("_stamp", "_nxt", "_prv", "_qt", "_tcand", "_invm")
 
     @classmethod
     def _tables(cls, state, table, hv, qhead, qs, qf) -> dict:
@@ -665,30 +671,41 @@ class Simulation(SimulationBase):
             model.wall_kt = np.zeros(4 + len(state["_wa"]))  # (saved before heated walls)
         vars(self).update(state)
 
-    def _wall_args(self):
-        return (self._wa, self._wb, self._wstart, self._wwall, self._wsx, self._wsy)
-
     def _run(self, t_end, max_collisions, max_events, out, info, mode):
-        """One call of the event loop, with the state in its bundles (see loop.py)."""
-        particles = (self._S, self._E, self._stamp, self._nxt, self._prv, self._qt,
-                     self._tc, self._invm, self._image, self._order)
+        """One call of the event loop, with the state in its bundles (see loop.py).
+
+        The physics families not in use are ``None``; a model hands over restitution
+        and the TC model always (a model of heated walls or a thermostat alone runs
+        its contacts with ``e = 1`` through them), the others as it uses them."""
+        families = _NO_MODEL if self._model is None else self._model.engine_families()
         return _loop.run(
-            t_end, max_collisions, max_events, mode, out, info, particles,
-            (self._gi, self._gf, self._head), self._wall_args(),
-            (self._hv, self._qhead, self._qs, self._qf),
-            (self._counts, self._acc, self._wacc),
-            (self._log_t, self._log_e, self._log_n, self._log_j),
-            None if self._model is None else self._model.engine_params(),
-            self._flight(),
-            None if self._growth is None else (float(self._growth[0]),
-                                               float(self._growth[1])),
+            _layout.Control(t_end, max_collisions, max_events, mode, out, info),
+            _layout.Particles(self._S, self._E, self._stamp, self._nxt, self._prv,
+                              self._qt, self._tcand, self._invm, self._image, self._order),
+            _layout.Grid(self._gi, self._gf, self._head),
+            _layout.Walls(self._wa, self._wb, self._wstart, self._wwall, self._wsx,
+                          self._wsy),
+            _layout.Calendar(self._hv, self._qhead, self._qs, self._qf),
+            _layout.Tallies(self._counts, self._acc, self._wacc),
+            _layout.Log(self._log_t, self._log_e, self._log_n, self._log_j),
+            families.contact, families.heated, families.thermostat, families.uniforms,
+            self._gravity_bundle(), self._growth_bundle(),
         )
 
-    def _flight(self):
-        """The engine's flight argument: ``None`` (straight lines) or gravity's."""
+    def _gravity_bundle(self):
+        """The engine's gravity family: ``None`` (straight-line flight) or a
+        ``layout.Gravity`` holding this simulation's inverse masses and supports."""
         g = self._gravity
         return (None if g is None else
-                (float(g[0]), float(g[1]), self._invm, _layout.support_view(self._S)))
+                _layout.Gravity(float(g[0]), float(g[1]), self._invm,
+                                _layout.support_view(self._S)))
+
+    def _growth_bundle(self):
+        """The engine's growth family: ``None`` (fixed radii) or a ``layout.Growth``."""
+        if self._growth is None:
+            return None
+        rate, t0 = self._growth.tolist()  # (stored as an array, which checkpoints hold)
+        return _layout.Growth(rate, t0)
 
     def _queue_args(self):
         return (self._qt, self._E, self._hv, self._qhead, self._qs, self._qf)
@@ -711,9 +728,8 @@ class Simulation(SimulationBase):
         # links left in the rows of disks that end up outside the lists go unread.)
         state = aligned_rows(len(perm), _layout.N_STATE, np.float64)
         state[:] = self._S[perm]
-        queue = _queue.allocate(len(perm))
-        queue[4][_queue.LOOKAHEAD] = self._qs[_queue.LOOKAHEAD]  # (forced on in tests)
-        table = queue[1]
+        _, table, hv, qhead, qs, qf = _queue.allocate(len(perm))
+        qs[_queue.LOOKAHEAD] = self._qs[_queue.LOOKAHEAD]  # (forced on in tests)
         table[:] = self._E[perm]
         table[:, _layout.STAGED] = 0  # (what the lookahead fetched has moved)
         disk = table[:, _layout.KIND] & _layout.KIND_MASK == _layout.DISK
@@ -721,11 +737,13 @@ class Simulation(SimulationBase):
         _, nxt, prv, times, _, _ = _layout.row_views(state, table)
         head = np.empty_like(self._head)
         _grid.build_lists(table[:, _layout.CELL], head, nxt, prv)
-        _queue.build(self._time, times, *queue)  # (times is queue[0]: as in the loop)
+        # (The queue times are passed twice, as the loop does.)
+        _queue.build(self._time, times, times, table, hv, qhead, qs, qf)
         model = None if self._model is None else self._model.permuted(perm)
-        vars(self).update(self._tables(state, *queue[1:]), _mass=self._mass[perm],
-                          _order=self._order[perm], _image=self._image[perm], _head=head,
-                          _model=model, _since_reorder=0)
+        vars(self).update(self._tables(state, table, hv, qhead, qs, qf),
+                          _mass=self._mass[perm], _order=self._order[perm],
+                          _image=self._image[perm], _head=head, _model=model,
+                          _since_reorder=0)
 
     def _to_user(self, internal: np.ndarray) -> np.ndarray:
         """Rows in the user's disk order: a new, read-only array (editing it could not
@@ -1079,7 +1097,7 @@ class Simulation(SimulationBase):
         """Disk centres at :attr:`time`, shape (N, 2), a copy (wrapped into the box)."""
         out = np.empty((len(self._S), 2))
         _flight.synchronized_positions(self._time, self._S, self._gi, self._gf, out,
-                                       self._flight())
+                                       self._gravity_bundle())
         return self._to_user(out)
 
     @positions.setter
@@ -1097,12 +1115,12 @@ class Simulation(SimulationBase):
 
     def _unwrapped(self) -> np.ndarray:
         """Unwrapped centres at :attr:`time`, in internal row order."""
-        return (_flight.positions_at(self._time, self._S, self._flight())
+        return (_flight.positions_at(self._time, self._S, self._gravity_bundle())
                 + self._image * self._box.size)
 
     def _velocities(self) -> np.ndarray:
         """Velocities at :attr:`time`, in internal row order (a new array)."""
-        return _flight.velocities_at(self._time, self._S, self._flight())
+        return _flight.velocities_at(self._time, self._S, self._gravity_bundle())
 
     @property
     def velocities(self) -> np.ndarray:
@@ -1405,7 +1423,7 @@ class Simulation(SimulationBase):
 
     def _sync_all(self) -> None:
         """Move every stored position to the current time (local clocks all equal)."""
-        _flight.drift_all(self._time, self._S, self._flight())
+        _flight.drift_all(self._time, self._S, self._gravity_bundle())
 
     def measure(self, duration: float, **kwargs):
         """Run for ``duration`` and return the measurements over that window.

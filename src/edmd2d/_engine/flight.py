@@ -9,12 +9,12 @@ velocity) at any later time comes from these functions, and only the disks of an
 are moved to its time (:func:`drift`).  Every place of the engine and of the Python
 layer that moves a disk along its flight goes through this module.
 
-The ``flight`` argument chooses the flight: ``None`` for straight lines (the default,
-which compiles to the plain formulas), or ``(gx, gy, invm, support)``: the
-acceleration, the inverse masses (0 for an immovable disk) and each disk's supports
-(``layout.S_SUPPORT``): the box walls it rests on, one bit per side.  A disk resting
-on a wall (put to rest by an inelastic model, :mod:`.response`) slides along it: the
-component of ``g`` normal to that wall is held by the wall.
+The ``gravity`` argument chooses the flight: ``None`` for straight lines (the default,
+which compiles to the plain formulas), or a ``layout.Gravity``: the acceleration
+``(gx, gy)``, the inverse masses ``invm`` (0 for an immovable disk) and each disk's
+``support`` (``layout.S_SUPPORT``): the box walls it rests on, one bit per side.  A
+disk resting on a wall (put to rest by an inelastic model, :mod:`.response`) slides
+along it: the component of ``g`` normal to that wall is held by the wall.
 """
 
 from __future__ import annotations
@@ -28,50 +28,49 @@ from .layout import VX, VY, T, X, Y
 
 
 @njit
-def acceleration(i, flight):
+def acceleration(i, gravity):
     """The acceleration of disk ``i``: ``g`` if it is movable, less the components
     that the walls it rests on hold; 0 for an immovable disk."""
-    if flight is None:
+    if gravity is None:
         return 0.0, 0.0
-    gx, gy, invm, support = flight
-    if invm[i] == 0.0:
+    if gravity.invm[i] == 0.0:
         return 0.0, 0.0
-    rest = support[i]
+    rest = gravity.support[i]
     if rest == 0:
-        return gx, gy
-    return (0.0 if rest & 3 else gx), (0.0 if rest & 12 else gy)
+        return gravity.gx, gravity.gy
+    return (0.0 if rest & 3 else gravity.gx), (0.0 if rest & 12 else gravity.gy)
 
 
 @njit
-def position_at(i, t, S, flight):
+def position_at(i, t, S, gravity):
     """The centre of disk ``i`` at time ``t`` (not wrapped into the box)."""
     dt = t - S[i, T]
-    if flight is None:
+    if gravity is None:
         return S[i, X] + dt * S[i, VX], S[i, Y] + dt * S[i, VY]
-    gx, gy = acceleration(i, flight)
+    gx, gy = acceleration(i, gravity)
     return (S[i, X] + dt * (S[i, VX] + 0.5 * gx * dt),
             S[i, Y] + dt * (S[i, VY] + 0.5 * gy * dt))
 
 
 @njit
-def velocity_at(i, t, S, flight):
+def velocity_at(i, t, S, gravity):
     """The velocity of disk ``i`` at time ``t``."""
-    if flight is None:
+    if gravity is None:
         return S[i, VX], S[i, VY]
     dt = t - S[i, T]
-    gx, gy = acceleration(i, flight)
+    gx, gy = acceleration(i, gravity)
     return S[i, VX] + gx * dt, S[i, VY] + gy * dt
 
 
 @njit
-def drift(i, t, S, flight):
+def drift(i, t, S, gravity):
     """Move disk ``i``'s stored state along its flight to time ``t``."""
     dt = t - S[i, T]
-    if flight is None:
+    if gravity is None:
         S[i, X] += dt * S[i, VX]
         S[i, Y] += dt * S[i, VY]
     else:
-        gx, gy = acceleration(i, flight)
+        gx, gy = acceleration(i, gravity)
         S[i, X] += dt * (S[i, VX] + 0.5 * gx * dt)
         S[i, Y] += dt * (S[i, VY] + 0.5 * gy * dt)
         S[i, VX] += gx * dt
@@ -80,11 +79,11 @@ def drift(i, t, S, flight):
 
 
 @njit
-def synchronized_positions(t, S, gi, gf, out, flight):
+def synchronized_positions(t, S, gi, gf, out, gravity):
     """Positions of all disks at time ``t`` (>= every local time), wrapped into the box
     on its periodic axes."""
     for i in range(S.shape[0]):
-        x, y = position_at(i, t, S, flight)
+        x, y = position_at(i, t, S, gravity)
         if gi[2] != 0:
             x -= gf[0] * math.floor(x / gf[0])
         if gi[3] != 0:
@@ -93,38 +92,37 @@ def synchronized_positions(t, S, gi, gf, out, flight):
         out[i, 1] = y
 
 
-def accelerations(flight):
+def accelerations(gravity):
     """Per-disk accelerations, shape (N, 2) (numpy; see :func:`acceleration`)."""
-    gx, gy, invm, support = flight
-    acc = np.zeros((len(invm), 2))
-    movable = invm > 0.0
-    acc[movable & (support & 3 == 0), 0] = gx
-    acc[movable & (support & 12 == 0), 1] = gy
+    acc = np.zeros((len(gravity.invm), 2))
+    movable = gravity.invm > 0.0
+    acc[movable & (gravity.support & 3 == 0), 0] = gravity.gx
+    acc[movable & (gravity.support & 12 == 0), 1] = gravity.gy
     return acc
 
 
-def positions_at(t, S, flight=None):
+def positions_at(t, S, gravity=None):
     """Unwrapped centres of all disks at time ``t``, shape (N, 2) (numpy, a new array);
     under gravity on their parabolas."""
     dt = (t - S[:, T])[:, None]
-    if flight is None:
+    if gravity is None:
         return S[:, X:Y + 1] + dt * S[:, VX:VY + 1]
-    return S[:, X:Y + 1] + dt * (S[:, VX:VY + 1] + 0.5 * accelerations(flight) * dt)
+    return S[:, X:Y + 1] + dt * (S[:, VX:VY + 1] + 0.5 * accelerations(gravity) * dt)
 
 
-def velocities_at(t, S, flight=None):
+def velocities_at(t, S, gravity=None):
     """Velocities of all disks at time ``t``, shape (N, 2) (numpy, a new array)."""
-    if flight is None:
+    if gravity is None:
         return S[:, VX:VY + 1].copy()
-    return S[:, VX:VY + 1] + accelerations(flight) * (t - S[:, T])[:, None]
+    return S[:, VX:VY + 1] + accelerations(gravity) * (t - S[:, T])[:, None]
 
 
-def drift_all(t, S, flight=None):
+def drift_all(t, S, gravity=None):
     """Move every stored state to time ``t`` (all local clocks then equal ``t``)."""
-    if flight is None:
+    if gravity is None:
         S[:, X:Y + 1] += (t - S[:, T])[:, None] * S[:, VX:VY + 1]
     else:
-        pos = positions_at(t, S, flight)
-        S[:, VX:VY + 1] = velocities_at(t, S, flight)
+        pos = positions_at(t, S, gravity)
+        S[:, VX:VY + 1] = velocities_at(t, S, gravity)
         S[:, X:Y + 1] = pos
     S[:, T] = t

@@ -1,4 +1,5 @@
-"""The engine's state layout, declared once: row tables, event codes, counters, statuses.
+"""The engine's state layout, declared once: row tables, event codes, counters, statuses,
+and the named bundles in which the event loop receives its arrays and its physics.
 
 Per-disk data sits in two tables of 64-byte rows (64-byte aligned, so that a row is one
 cache line):
@@ -9,7 +10,7 @@ links in its grid cell's list (int32).
 
 ``E[i]``, what only disk ``i``'s own events use: its cell, its kept candidate (the best
 event that is not a cell crossing: kind, partner, aux, the partner's stamp and its time
-``tc``, the candidate time), its links and scheduled time ``qt`` in the calendar queue,
+``tcand``), its links and scheduled time ``qt`` in the calendar queue,
 ``1/mass``, and the lookahead's notes of the prefetch stages given to its event (a
 hint).
 
@@ -20,11 +21,19 @@ the table (``S``, ``S.view(np.int32)``, ``E``, ``E.view(np.float64)``); :func:`c
 Event codes are packed into the int32 columns by the named helpers below: a kind and,
 for a cell crossing, its direction; a periodic image shift; a wall segment's part and
 image shift; a box wall's side.
+
+The bundles (:class:`typing.NamedTuple`, read by field name in the compiled code) are
+declared at the end: the loop's own state (:class:`Control`, :class:`Particles`,
+:class:`Grid`, :class:`Walls`, :class:`Calendar`, :class:`Tallies`, :class:`Log`) and
+one per physics family (:class:`Contact`, :class:`HeatedWalls`, :class:`Thermostat`,
+:class:`Uniforms`, :class:`Gravity`, :class:`Growth`).  A family that a system does not
+use is passed as ``None``: numba prunes its branches from the loop compiled for it.
 """
 
 from __future__ import annotations
 
 from enum import IntEnum
+from typing import NamedTuple
 
 import numpy as np
 
@@ -67,7 +76,7 @@ NEXT = _col("NEXT", "E", np.int32, 5)  # calendar queue: next in the bucket list
 PREV = _col("PREV", "E", np.int32, 6)  # calendar queue: previous in the bucket list
 LOC = _col("LOC", "E", np.int32, 7)  # calendar queue: heap slot, list, or -1
 QT = _col("QT", "E", np.float64, 4)  # scheduled event time (inf: none)
-E_TC = _col("E_TC", "E", np.float64, 5)  # time of the kept candidate
+E_TCAND = _col("E_TCAND", "E", np.float64, 5)  # time of the kept candidate
 E_INVM = _col("E_INVM", "E", np.float64, 6)  # 1 / mass (0: immovable)
 STAGED = _col("STAGED", "E", np.int32, 15)  # lookahead stages given, as bits (a hint)
 N_E = ROW_BYTES // 4  # int32 columns per E row
@@ -94,10 +103,10 @@ check()
 
 def row_views(S, E):
     """The per-disk columns kept inside the rows of ``S`` and ``E``, as 1-D views
-    (writable, strided): ``(stamp, nxt, prv, qt, tc, invm)``."""
+    (writable, strided): ``(stamp, nxt, prv, qt, tcand, invm)``."""
     si = S.view(np.int32)
     ef = E.view(np.float64)
-    return (si[:, S_STAMP], si[:, S_NEXT], si[:, S_PREV], ef[:, QT], ef[:, E_TC],
+    return (si[:, S_STAMP], si[:, S_NEXT], si[:, S_PREV], ef[:, QT], ef[:, E_TCAND],
             ef[:, E_INVM])
 
 
@@ -231,3 +240,198 @@ ERR_STALLED = 12  # inelastic collapse: unboundedly many collisions in no time
 # Disks wedged with no room to move: unboundedly many events in no time.  Found by the
 # Python driver between calls of the loop (it costs the loop nothing), not by the loop.
 ERR_WEDGED = 13
+
+
+# ------------------------------------------------------------------------- bundles
+# What the event loop receives (loop.run), by name.  (The compiled code reads the
+# fields by name; a bundle's type is part of the compiled loop's signature.)
+
+
+class Control(NamedTuple):
+    """What a call of the loop is to do, and where it reports."""
+
+    #: Stop before the first event later than this time.
+    t_end: float
+    #: Stop right after this many disk-disk collisions of the call.
+    max_collisions: int
+    #: Stop after this many processed events.
+    max_events: int
+    #: ``RUN_EVENTS`` (process events) or ``PREDICT_ALL`` (predict every disk afresh and
+    #: rebuild the queue).
+    mode: int
+    #: float64, shape (1,): the time of the last processed event (in: the clock).
+    out: np.ndarray
+    #: int64, shape (2,): the disks (or disk and wall) an error status names.
+    info: np.ndarray
+
+
+class Particles(NamedTuple):
+    """The per-disk state: the row tables and the columns viewed inside them
+    (:func:`row_views`)."""
+
+    #: The state rows (float64, ``N_STATE`` columns).
+    S: np.ndarray
+    #: The bookkeeping rows (int32, ``N_E`` columns).
+    E: np.ndarray
+    #: Each disk's invalidation counter (``S_STAMP``).
+    stamp: np.ndarray
+    #: The next disk in the disk's cell list (``S_NEXT``; -1: none).
+    nxt: np.ndarray
+    #: The previous disk in the disk's cell list (``S_PREV``).
+    prv: np.ndarray
+    #: The time of the disk's scheduled event (``QT``; inf: none).
+    qt: np.ndarray
+    #: The time of the disk's kept candidate (``E_TCAND``).
+    tcand: np.ndarray
+    #: 1 / mass (``E_INVM``; 0: immovable).
+    invm: np.ndarray
+    #: int64, shape (N, 2): the periodic images crossed.
+    image: np.ndarray
+    #: int64: the user's index of each internal row.
+    order: np.ndarray
+
+
+class Grid(NamedTuple):
+    """The cell grid (see :mod:`.grid`)."""
+
+    #: int64 ``(ncx, ncy, periodic x, periodic y)``.
+    gi: np.ndarray
+    #: float64 ``(width, height, cell width, cell height)``.
+    gf: np.ndarray
+    #: int32: the first disk of each cell's list (-1: empty).
+    head: np.ndarray
+
+
+class Walls(NamedTuple):
+    """The wall segments and their lists per cell (``grid.bucket_walls``)."""
+
+    #: Shape (S, 2): the start points.
+    wa: np.ndarray
+    #: Shape (S, 2): the end points.
+    wb: np.ndarray
+    #: Where each cell's list starts in ``wwall`` (one more entry than cells).
+    wstart: np.ndarray
+    #: The segments listed per cell.
+    wwall: np.ndarray
+    #: The periodic image shift in x of each listed segment.
+    wsx: np.ndarray
+    #: The periodic image shift in y of each listed segment.
+    wsy: np.ndarray
+
+
+class Calendar(NamedTuple):
+    """The calendar queue's arrays besides the times and links in ``E`` (see
+    :mod:`.queue`)."""
+
+    #: int32: the heap of the current bucket, the disk at each slot.
+    hv: np.ndarray
+    #: int32, shape (nb + 1,): the first disk of each bucket list and of the overflow.
+    qhead: np.ndarray
+    #: int64 scalars (``queue.CUR``, ``queue.NHEAP``, ..., ``queue.LOOKAHEAD``).
+    qs: np.ndarray
+    #: float64 scalars (``queue.ORIGIN``, ``queue.INVW``).
+    qf: np.ndarray
+
+
+class Tallies(NamedTuple):
+    """Counters and accumulated impulses and energies."""
+
+    #: int64 event counters (``C_*``).
+    counts: np.ndarray
+    #: float64 accumulators (``A_*``).
+    acc: np.ndarray
+    #: Shape (S, ``N_WACC``): each wall segment's tallies (``W_*``).
+    wacc: np.ndarray
+
+
+class Log(NamedTuple):
+    """The event log (capacity ``len(times)``; 0: no log)."""
+
+    #: float64: each logged event's time.
+    times: np.ndarray
+    #: int64, shape (capacity, 3): kind, disk (user index), partner.
+    events: np.ndarray
+    #: int64, shape (1,): events logged (may pass the capacity: see ``loop.run``).
+    count: np.ndarray
+    #: float64: each logged event's impulse.
+    impulses: np.ndarray
+
+
+# --- the physics families (each None when unused)
+
+
+class Contact(NamedTuple):
+    """Restitution and the TC model (see :mod:`.response`)."""
+
+    #: float64, shape (S, S): the coefficient for each pair of species.
+    table: np.ndarray
+    #: int32: each row's species.
+    species: np.ndarray
+    #: The coefficient against box walls and segments.
+    wall: float
+    #: The TC model's duration: a collision within ``tc`` of a disk's last is elastic.
+    tc: float
+    #: float64: each row's last collision time (-inf before the first).
+    t_last: np.ndarray
+    #: int64: each row's collisions in a row at the same time.
+    streak: np.ndarray
+    #: The ``tc`` with which box walls hold disks at rest under gravity (0: never).
+    hold: float
+
+
+class HeatedWalls(NamedTuple):
+    """Walls that send disks back with velocities drawn at their temperature."""
+
+    #: float64, shape (4 + S,): ``kT`` of each box wall and segment (0: not heated).
+    kt: np.ndarray
+
+
+class Thermostat(NamedTuple):
+    """The Andersen thermostat: velocity redraws at the events of a Poisson process."""
+
+    #: The temperature of the redrawn velocities.
+    kt: float
+    #: The rate of redraws over all rows.
+    rate: float
+    #: float64, shape (1,): the time of the next redraw (advanced by the engine).
+    t_next: np.ndarray
+
+
+class Uniforms(NamedTuple):
+    """Uniform random numbers in ``[0, 1)`` for heated walls and the thermostat."""
+
+    #: float64: the numbers.
+    buffer: np.ndarray
+    #: int64, shape (1,): the next one to use.
+    cursor: np.ndarray
+
+
+class Gravity(NamedTuple):
+    """A uniform acceleration of the movable disks (see :mod:`.flight`)."""
+
+    #: The acceleration's x component.
+    gx: float
+    #: The acceleration's y component.
+    gy: float
+    #: 1 / mass (0: immovable, feels no gravity).
+    invm: np.ndarray
+    #: int32: the box walls each disk rests on, one bit per side (``S_SUPPORT``).
+    support: np.ndarray
+
+
+class Growth(NamedTuple):
+    """Radii that grow linearly in time: ``S[i, R] (1 + rate (t - t0))``."""
+
+    #: The growth rate per unit time.
+    rate: float
+    #: The time at which the stored radii hold.
+    t0: float
+
+
+class ModelFamilies(NamedTuple):
+    """The families a ``models.Model`` hands the engine, each ``None`` when unused."""
+
+    contact: Contact | None
+    heated: HeatedWalls | None
+    thermostat: Thermostat | None
+    uniforms: Uniforms | None

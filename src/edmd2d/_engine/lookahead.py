@@ -61,7 +61,7 @@ def _exposed(direction):
 
 
 @kernel
-def lookahead(opened, cur, first, S, E, qt, tc, gi, head, qhead, mask):
+def lookahead(opened, cur, first, S, E, qt, tcand, gi, head, qhead, mask):
     """Prefetch what the coming events will load (:func:`_lookahead_bucket`), as the
     calendar reaches bucket ``cur`` (its list starting at ``first``, ``qs[FIRST]``)
     after ``opened``, the last bucket this ran for (-1: none).  (A hint only: no effect
@@ -79,11 +79,11 @@ def lookahead(opened, cur, first, S, E, qt, tc, gi, head, qhead, mask):
         opened = cur - 1
     while opened < cur:
         opened += 1
-        _lookahead_bucket(opened, cur, first, S, E, qt, tc, gi, head, qhead, mask)
+        _lookahead_bucket(opened, cur, first, S, E, qt, tcand, gi, head, qhead, mask)
 
 
 @njit(inline="always")
-def _lookahead_bucket(b, cur, first, S, E, qt, tc, gi, head, qhead, mask):
+def _lookahead_bucket(b, cur, first, S, E, qt, tcand, gi, head, qhead, mask):
     """Prefetch, for the calendar at bucket ``b`` (``cur``, or a bucket before it that
     it stepped over), what the events of that bucket and the next ``_AHEAD`` will
     load, a stage at a time.
@@ -122,12 +122,12 @@ def _lookahead_bucket(b, cur, first, S, E, qt, tc, gi, head, qhead, mask):
                 prefetch(E, h)
                 break
             if stage <= 3:
-                _stage(h, stage, S, E, qt, tc, gi, head)
+                _stage(h, stage, S, E, qt, tcand, gi, head)
             h = E[h, NEXT]
 
 
 @njit(inline="always")
-def _stage(h, stage, S, E, qt, tc, gi, head):
+def _stage(h, stage, S, E, qt, tcand, gi, head):
     """Give disk ``h``'s scheduled event stage ``stage`` (1-3) of the lookahead and
     note it in ``E[h, STAGED]``; ``h``'s bookkeeping row must be in the caches (the
     previous stage requested it).
@@ -152,7 +152,7 @@ def _stage(h, stage, S, E, qt, tc, gi, head):
         if partner >= 0:
             prefetch(S, partner)
             prefetch(E, partner)
-    elif qt[h] < tc[h]:  # a cell crossing: only the exposed cells
+    elif qt[h] < tcand[h]:  # a cell crossing: only the exposed cells
         ox0, ox1, oy0, oy1 = _exposed(direction_of(E[h, KIND]))
         heads = stage == 2
     elif stage == 2:
@@ -178,7 +178,7 @@ _HEAP_STAGED = 8
 
 
 @njit(inline="always")
-def stage_heap(S, E, qt, tc, gi, head, hv, nheap):
+def stage_heap(S, E, qt, tcand, gi, head, hv, nheap):
     """Give each event in the current bucket's heap but its root (the event being
     processed) the first stage of the lookahead it still lacks.
 
@@ -193,5 +193,5 @@ def stage_heap(S, E, qt, tc, gi, head, hv, nheap):
         done = E[h, STAGED]
         stage = 1 if done & 2 == 0 else (2 if done & 4 == 0 else (3 if done & 8 == 0 else 0))
         if stage > 0:
-            _stage(h, stage, S, E, qt, tc, gi, head)
+            _stage(h, stage, S, E, qt, tcand, gi, head)
 

@@ -21,36 +21,32 @@ From ``queue.LOOKAHEAD_MIN_DISKS`` disks on, the loop also runs the lookahead
 (:mod:`.lookahead`), which prefetches what the coming events will read: a hint only,
 every event and all state are bit-identical with it on or off.
 
-The state comes in bundles (tuples of arrays, unpacked at the top of :func:`run`):
+The loop receives its state and its physics in named bundles, declared once in
+:mod:`.layout` and read by field name: ``control`` (what to do and where to report),
+``particles``, ``grid``, ``walls``, ``calendar``, ``tallies`` and ``log``; then one
+argument per physics family, each ``None`` when unused:
 
-``particles = (S, E, stamp, nxt, prv, qt, tc, invm, image, order)``
-    the row tables, the per-disk columns viewed inside them (``layout.row_views``),
-    the periodic image counters and each internal row's user index;
-``grid = (gi, gf, head)``
-    the grid's integer and float geometry (see :mod:`.grid`) and the cells' list heads;
-``walls = (wa, wb, wstart, wwall, wsx, wsy)``
-    segment end points and their lists per cell (``grid.bucket_walls``);
-``calendar = (hv, qhead, qs, qf)``
-    the calendar queue's heap, list heads and scalars (``qt`` and the links are in
-    ``E``);
-``tallies = (counts, acc, wacc)``
-    event counters and accumulated impulses (``layout.C_*``, ``layout.A_*``), and the
-    impulses and contacts of each wall segment (``wacc[k]``, ``layout.W_*``);
-``log = (log_t, log_e, log_n, log_j)``
-    the event log (capacity ``len(log_t)``) and each logged event's impulse;
-``model``
-    the physics of the contacts: ``None`` (elastic) or a model's tuple (see
-    :mod:`.response`);
-``flight``
-    the flight between events: ``None`` (straight lines) or gravity's tuple (see
+``contact``
+    restitution and the TC model (``layout.Contact``; ``None``: elastic contacts);
+``heated``
+    walls that send disks back at their temperature (``layout.HeatedWalls``);
+``thermostat``
+    the Andersen thermostat's redraws (``layout.Thermostat``);
+``uniforms``
+    the random numbers that heated walls and the thermostat draw
+    (``layout.Uniforms``; present whenever either of them is);
+``gravity``
+    a uniform acceleration (``layout.Gravity``; ``None``: straight-line flight, see
     :mod:`.flight`);
 ``growth``
-    ``None`` (fixed radii) or ``(rate, t0)``: every radius grows linearly in time,
-    ``S[i, R] (1 + rate (t - t0))`` (:func:`.scan.growth_factor`), in straight-line
-    flight with elastic contacts.  The grid's cells must stay wider than the largest
-    diameter: the caller stops the run before they no longer are and rebuilds it.
+    radii that grow linearly in time (``layout.Growth``), ``S[i, R] (1 + rate (t -
+    t0))`` (:func:`.predict.growth_factor`), in straight-line flight with elastic
+    contacts.  The grid's cells must stay wider than the largest diameter: the caller
+    stops the run before they no longer are and rebuilds it.
 
-Each combination of model, flight and growth compiles its own ``run``, only when used.
+numba prunes the branches of an argument that is ``None``, so each combination of
+families compiles its own ``run``, only when used, and the elastic default compiles to
+the plain algorithm.
 """
 
 from __future__ import annotations
@@ -139,10 +135,13 @@ def _log_event(k, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm, order,
 
 
 @kernel
-def run(t_end, max_collisions, max_events, mode, out, info,
-        particles, grid, walls, calendar, tallies, log, model, flight, growth):
-    """Process events in time order (``mode`` RUN_EVENTS), or (``mode`` PREDICT_ALL)
-    predict every disk's next event from the time ``out[0]`` and rebuild the queue.
+def run(control, particles, grid, walls, calendar, tallies, log,
+        contact, heated, thermostat, uniforms, gravity, growth):
+    """Process events in time order (``control.mode`` RUN_EVENTS), or (``mode``
+    PREDICT_ALL) predict every disk's next event from the time ``out[0]`` and rebuild
+    the queue.  (``t_end``, ``max_collisions``, ``max_events``, ``mode``, ``out`` and
+    ``info`` are the fields of ``control``; ``log_t``, ``log_e``, ``log_n`` and
+    ``log_j`` those of ``log``: ``times``, ``events``, ``count``, ``impulses``.)
 
     (Both share the one place where the full prediction is compiled into this
     function; see the module notes for the bundles.)
@@ -154,9 +153,9 @@ def run(t_end, max_collisions, max_events, mode, out, info,
     offending disks (or disk and wall: ``-1 - side`` for a box wall) are written to
     ``info`` and the state is left as it was just before that event.
 
-    A model's thermostat redraws (``KICK``) are events of their own, at their times:
-    one due before the next scheduled event is processed first.  With a model that
-    draws random numbers the loop returns ``NEED_RANDOM`` before an event when its
+    The thermostat's redraws (``KICK``) are events of their own, at their times: one
+    due before the next scheduled event is processed first.  With ``uniforms`` (heated
+    walls or a thermostat) the loop returns ``NEED_RANDOM`` before an event when its
     buffer runs low (nothing of that event done yet): refill it and call again.
 
     If ``log_t`` has room, every disk-disk, segment, box-wall and thermostat event is
@@ -167,12 +166,42 @@ def run(t_end, max_collisions, max_events, mode, out, info,
     after the event that filled it (the caller empties the log and calls again, so no
     event is lost); with no log (capacity 0) none of this runs.
     """
-    S, E, stamp, nxt, prv, qt, tc, invm, image, order = particles
-    gi, gf, head = grid
-    wa, wb, wstart, wwall, wsx, wsy = walls
-    hv, qhead, qs, qf = calendar
-    counts, acc, wacc = tallies
-    log_t, log_e, log_n, log_j = log
+    t_end = control.t_end
+    max_collisions = control.max_collisions
+    max_events = control.max_events
+    mode = control.mode
+    out = control.out
+    info = control.info
+    S = particles.S
+    E = particles.E
+    stamp = particles.stamp
+    nxt = particles.nxt
+    prv = particles.prv
+    qt = particles.qt
+    tcand = particles.tcand
+    invm = particles.invm
+    image = particles.image
+    order = particles.order
+    gi = grid.gi
+    gf = grid.gf
+    head = grid.head
+    wa = walls.wa
+    wb = walls.wb
+    wstart = walls.wstart
+    wwall = walls.wwall
+    wsx = walls.wsx
+    wsy = walls.wsy
+    hv = calendar.hv
+    qhead = calendar.qhead
+    qs = calendar.qs
+    qf = calendar.qf
+    counts = tallies.counts
+    acc = tallies.acc
+    wacc = tallies.wacc
+    log_t = log.times
+    log_e = log.events
+    log_n = log.count
+    log_j = log.impulses
     ncx = gi[0]
     ncy = gi[1]
     log_cap = log_t.shape[0]
@@ -200,26 +229,27 @@ def run(t_end, max_collisions, max_events, mode, out, info,
             npred = S.shape[0]
         else:
             i = queue.top(qt, E, hv, qhead, qs, qf)
-            # (Every test of the thermostat starts with `model is not None`: numba prunes
-            # it all from the elastic loop, which compiles as if it were not there.)
+            # (Every test of a family starts with `family is not None`: numba prunes it
+            # all from a loop without it, which compiles as if it were not there.)
             kicked = False
-            if model is not None:
-                if response.needs_random(model):
+            if uniforms is not None:
+                if response.needs_random(uniforms):
                     status = NEED_RANDOM
                     break
+            if thermostat is not None:
                 # A thermostat redraw due before the next event (or at its time) comes
                 # first.
-                t_kick = response.next_kick(model)
+                t_kick = thermostat.t_next[0]
                 if t_kick <= t_end and (i < 0 or t_kick <= qt[i]):
                     if n_ev >= max_events:
                         status = REACHED_EVENT_LIMIT
                         break
                     kicked = True
                     t = t_kick
-                    i = response.kick(S.shape[0], model)
+                    i = response.kick(S.shape[0], thermostat, uniforms)
                     if invm[i] == 0.0:
                         continue  # (an immovable disk keeps its velocity)
-            if model is not None and kicked:
+            if thermostat is not None and kicked:
                 kind = KICK
                 partner = -1
                 aux = -1
@@ -230,10 +260,10 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                 if qs[queue.LOOKAHEAD] != 0:
                     if qs[queue.CUR] != opened:
                         lookahead.lookahead(opened, qs[queue.CUR], qs[queue.FIRST], S, E, qt,
-                                            tc, gi, head, qhead, qs[queue.MASK])
+                                            tcand, gi, head, qhead, qs[queue.MASK])
                         opened = qs[queue.CUR]
                     else:
-                        lookahead.stage_heap(S, E, qt, tc, gi, head, hv, qs[queue.NHEAP])
+                        lookahead.stage_heap(S, E, qt, tcand, gi, head, hv, qs[queue.NHEAP])
                 t = qt[i]
                 # The next events are most likely those of the heap root's children: start
                 # loading their rows now (at large N each is a cache miss otherwise).
@@ -251,7 +281,7 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                 if n_ev >= max_events:
                     status = REACHED_EVENT_LIMIT
                     break
-                if t < tc[i]:
+                if t < tcand[i]:
                     kind = CROSS
                     partner = -1
                     aux = direction_of(E[i, KIND])
@@ -265,9 +295,9 @@ def run(t_end, max_collisions, max_events, mode, out, info,
             direction = -1  # of a cell crossing of i, for a partial prediction
             stale = False
             if log_cap > 0 and kind != CROSS:
-                pvx, pvy = velocity_at(i, t, S, flight)
+                pvx, pvy = velocity_at(i, t, S, gravity)
                 if kind == DISK:
-                    qvx, qvy = velocity_at(partner, t, S, flight)
+                    qvx, qvy = velocity_at(partner, t, S, gravity)
 
             if kind == DISK:
                 j = partner
@@ -280,18 +310,18 @@ def run(t_end, max_collisions, max_events, mode, out, info,
                     info[1] = j
                     status = ERR_IMMOVABLE_PAIR
                     break
-                elif response.stalls(i, j, t, invm, model):
+                elif response.stalls(i, j, t, invm, contact):
                     info[0] = i
                     info[1] = j
                     status = ERR_STALLED
                     break
                 else:
-                    drift(i, t, S, flight)
-                    drift(j, t, S, flight)
+                    drift(i, t, S, gravity)
+                    drift(j, t, S, gravity)
                     # A contact that rounding left not approaching exchanges nothing but is
                     # a processed contact event like any other (as for walls, and as in the
                     # reference): counted, logged, both disks re-predicted.
-                    response.collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight,
+                    response.collide_pair(i, j, t, aux, S, invm, acc, gf, contact, gravity,
                                           growth)
                     counts[C_COLLISIONS] += 1
                     n_coll += 1
@@ -302,26 +332,26 @@ def run(t_end, max_collisions, max_events, mode, out, info,
             elif kind == SEGMENT or kind == BOX:
                 # (stalls(i, i, ...): a wall has no streak of its own; passing i again,
                 # not a literal -1, spares a second compiled copy.)
-                if invm[i] == 0.0 or response.stalls(i, i, t, invm, model):
+                if invm[i] == 0.0 or response.stalls(i, i, t, invm, contact):
                     info[0] = i
                     info[1] = partner if kind == SEGMENT else -1 - aux
                     status = ERR_IMMOVABLE_WALL if invm[i] == 0.0 else ERR_STALLED
                     break
-                drift(i, t, S, flight)
+                drift(i, t, S, gravity)
                 # (One call site: each inlined copy lengthens the first compilation.)
                 response.collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf,
-                                      wa, wb, model, flight, growth)
+                                      wa, wb, contact, heated, uniforms, gravity, growth)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1
-            elif model is not None and kind == KICK:
-                drift(i, t, S, flight)
-                response.redraw(i, S, invm, acc, model, flight)
+            elif thermostat is not None and kind == KICK:
+                drift(i, t, S, gravity)
+                response.redraw(i, S, invm, acc, thermostat, uniforms, gravity)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_KICKS] += 1
             else:  # CROSS
-                drift(i, t, S, flight)
+                drift(i, t, S, gravity)
                 c = E[i, CELL]
                 cy = c // ncx
                 cx = c - cy * ncx
@@ -361,8 +391,8 @@ def run(t_end, max_collisions, max_events, mode, out, info,
             else:
                 d = redo0 if k == 0 else redo1
                 dk = direction if k == 0 else -1
-            t_new = predict(d, t, dk, S, E, tc, stamp, gi, gf, head, nxt,
-                            wa, wb, wstart, wwall, wsx, wsy, flight, growth)
+            t_new = predict(d, t, dk, S, E, tcand, stamp, gi, gf, head, nxt,
+                            wa, wb, wstart, wwall, wsx, wsy, gravity, growth)
             E[d, STAGED] = 0  # (a new event: no stage of the lookahead yet)
             if mode == PREDICT_ALL:
                 qt[d] = t_new

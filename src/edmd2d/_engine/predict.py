@@ -129,12 +129,12 @@ def exit_time(x, vx, c, side, ncell, periodic):
 
 @njit
 def growth_factor(t, growth):
-    """Under growth ``(rate, t0)``: the factor ``1 + rate (t - t0)`` by which every
+    """Under growth (``layout.Growth``): the factor ``1 + rate (t - t0)`` by which every
     radius at ``t`` exceeds its stored value ``S[i, R]`` (the radius at ``t0``); each
     radius grows at the speed ``rate S[i, R]``.  1 without growth."""
     if growth is None:
         return 1.0
-    return 1.0 + growth[0] * (t - growth[1])
+    return 1.0 + growth.rate * (t - growth.t0)
 
 
 @njit

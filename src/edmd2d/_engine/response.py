@@ -7,32 +7,34 @@ inverse masses (0 for an immovable disk) and ``e`` the coefficient of restitutio
 elastic (energy conserved), ``e < 1`` loses ``(1 - e^2) vn^2 / (2 (w_i + w_j))`` of
 kinetic energy.  A wall is a partner with ``w = 0``.
 
-The model argument chooses the physics: ``None`` for elastic disks (the default, which
-compiles to the plain elastic formulas), or the model's tuple ``(table, species, wall,
-tc, t_last, streak, hold, wall_kt, thermo, buffer, cursor)`` (see
-``edmd2d.models.Model``):
+The physics comes in families (the named tuples of :mod:`.layout`), each an argument
+that is ``None`` when unused, so that the elastic default compiles to the plain
+elastic formulas (the arrays are an ``edmd2d.models.Model``'s own, rows in the engine's
+internal order):
 
-- ``table[a, b]``: the coefficient for a pair of species ``a, b``; ``species[i]`` per
-  disk (rows in the engine's internal order); ``wall``: the coefficient against box
-  walls and wall segments;
-- the TC model (Luding and McNamara 1998): a collision is elastic when a movable disk
-  involved collided less than ``tc`` ago; ``t_last[i]``, the time of disk ``i``'s last
-  collision (-inf before the first; never set for immovable disks, which act as walls);
-- ``streak[i]``: how many collisions in a row of disk ``i`` each came at the same
-  time as the one before it, to within a relative ``INSTANT``: an inelastic
-  collapse that the TC model does not stop (``tc`` = 0) makes a streak grow without
-  end, and :func:`stalls` stops the run at ``STALL_COLLISIONS``;
-- ``hold``: the ``tc`` with which box walls hold disks at rest under gravity
-  (:func:`_rest`; 0 for elastic disks, which never come to rest);
-- ``wall_kt[k]``: the temperature ``kT`` of box wall ``k`` (0-3) or of segment
-  ``k - 4``; a heated wall (``kT > 0``) sends a disk back with a velocity drawn afresh
-  (:func:`_heat`) instead of reflecting it;
-- ``thermo = (kT, rate, t_next)``: the Andersen thermostat, redraws of a random disk's
-  velocity (:func:`kick`, :func:`redraw`) at the events of a Poisson process of
-  ``rate`` (over all rows), the next at ``t_next``;
-- ``buffer``, ``cursor``: uniform random numbers in ``[0, 1)`` from the model's
-  generator and the next one to use; the loop returns for a refill when fewer than
-  ``RANDOM_PER_EVENT`` are left.
+- ``contact`` (``layout.Contact``): ``table[a, b]``, the coefficient for a pair of
+  species ``a, b``; ``species[i]`` per disk; ``wall``, the coefficient against box
+  walls and wall segments; the TC model (Luding and McNamara 1998): a collision is
+  elastic when a movable disk involved collided less than ``tc`` ago, ``t_last[i]``
+  the time of disk ``i``'s last collision (-inf before the first; never set for
+  immovable disks, which act as walls); ``streak[i]``, how many collisions in a row
+  of disk ``i`` each came at the same time as the one before it, to within a
+  relative ``INSTANT``: an inelastic collapse that the TC model does not stop
+  (``tc`` = 0) makes a streak grow without end, and :func:`stalls` stops the run at
+  ``STALL_COLLISIONS``; ``hold``, the ``tc`` with which box walls hold disks at rest
+  under gravity (:func:`_rest`; 0 for elastic disks, which never come to rest);
+- ``heated`` (``layout.HeatedWalls``): ``kt[k]``, the temperature ``kT`` of box wall
+  ``k`` (0-3) or of segment ``k - 4``; a heated wall (``kT > 0``) sends a disk back
+  with a velocity drawn afresh (:func:`_heat`) instead of reflecting it;
+- ``thermostat`` (``layout.Thermostat``): the Andersen thermostat, redraws of a
+  random disk's velocity at ``kt`` (:func:`kick`, :func:`redraw`) at the events of a
+  Poisson process of ``rate`` (over all rows), the next at ``t_next[0]``;
+- ``uniforms`` (``layout.Uniforms``): uniform random numbers in ``[0, 1)`` from the
+  model's generator, ``buffer``, and the next one to use, ``cursor[0]``, for both
+  heated walls and the thermostat; the loop returns for a refill when fewer than
+  ``RANDOM_PER_EVENT`` are left;
+- ``gravity`` (``layout.Gravity``, see :mod:`.flight`) and ``growth``
+  (``layout.Growth``) change the flight and the contact distance.
 """
 
 from __future__ import annotations
@@ -80,86 +82,73 @@ RANDOM_PER_EVENT = 6
 
 
 @njit
-def _uniform(model):
-    """The next uniform random number ``u`` in ``[0, 1)`` of the model's buffer (so
-    ``1 - u`` is never 0, and its logarithm is finite)."""
-    buffer = model[9]
-    cursor = model[10]
-    u = buffer[cursor[0]]
+def _uniform(uniforms):
+    """The next uniform random number ``u`` in ``[0, 1)`` of the buffer (so ``1 - u``
+    is never 0, and its logarithm is finite)."""
+    cursor = uniforms.cursor
+    u = uniforms.buffer[cursor[0]]
     cursor[0] += 1
     return u
 
 
 @njit
-def _thermal(model):
+def _thermal(uniforms):
     """``sqrt(-2 ln(1 - u))``: a Rayleigh deviate of unit scale (one uniform)."""
-    return math.sqrt(-2.0 * math.log(1.0 - _uniform(model)))
+    return math.sqrt(-2.0 * math.log(1.0 - _uniform(uniforms)))
 
 
 @njit
-def _gaussian(model):
+def _gaussian(uniforms):
     """A standard normal deviate (Box-Muller, the cosine branch: two uniforms)."""
-    r = _thermal(model)
-    return r * math.cos(2.0 * math.pi * _uniform(model))
+    r = _thermal(uniforms)
+    return r * math.cos(2.0 * math.pi * _uniform(uniforms))
 
 
 @njit
-def needs_random(model):
+def needs_random(uniforms):
     """Whether the buffer of random numbers is too low for the next event."""
-    if model is None:
-        return False
-    buffer = model[9]
-    return buffer.shape[0] > 0 and model[10][0] + RANDOM_PER_EVENT > buffer.shape[0]
+    buffer = uniforms.buffer
+    return buffer.shape[0] > 0 and uniforms.cursor[0] + RANDOM_PER_EVENT > buffer.shape[0]
 
 
 @njit
-def next_kick(model):
-    """The time of the thermostat's next redraw (``inf`` without a thermostat)."""
-    if model is None:
-        return math.inf
-    return model[8][2]
-
-
-@njit
-def kick(n, model):
+def kick(n, thermostat, uniforms):
     """A thermostat event: the row whose velocity is redrawn (uniform over the ``n``
-    rows), and the time of the next event drawn (an exponential waiting time)."""
-    thermo = model[8]
-    k = min(int(_uniform(model) * n), n - 1)
-    thermo[2] -= math.log(1.0 - _uniform(model)) / thermo[1]
+    rows); the time of the next event is drawn (an exponential waiting time)."""
+    k = min(int(_uniform(uniforms) * n), n - 1)
+    thermostat.t_next[0] -= math.log(1.0 - _uniform(uniforms)) / thermostat.rate
     return k
 
 
 @njit
-def redraw(k, S, invm, acc, model, flight):
+def redraw(k, S, invm, acc, thermostat, uniforms, gravity):
     """Draw the velocity of movable disk ``k`` from the Maxwell-Boltzmann distribution
     at the thermostat's ``kT`` (each component Gaussian with variance ``kT / m``), and
     add the kinetic energy gained to the thermostat's tally.  Under gravity it leaves
     any wall it rested on."""
-    s = math.sqrt(model[8][0] * invm[k])
+    s = math.sqrt(thermostat.kt * invm[k])
     before = S[k, VX] * S[k, VX] + S[k, VY] * S[k, VY]
-    S[k, VX] = s * _gaussian(model)
-    S[k, VY] = s * _gaussian(model)
+    S[k, VX] = s * _gaussian(uniforms)
+    S[k, VY] = s * _gaussian(uniforms)
     acc[A_THERMOSTAT] += 0.5 * (S[k, VX] * S[k, VX] + S[k, VY] * S[k, VY] - before) / invm[k]
-    if flight is not None:
-        flight[3][k] = 0
+    if gravity is not None:
+        gravity.support[k] = 0
 
 
 @njit
-def _pair_impulse(i, j, t, s, dd, wi, wj, acc, model):
+def _pair_impulse(i, j, t, s, dd, wi, wj, acc, contact):
     """The impulse of an approaching pair as a multiple ``k`` of the separation ``d``
     (the impulse is ``k d``, its magnitude ``J = k |d|``), from ``s = dv.d < 0`` and
     ``dd = d.d``: the normal relative velocity is ``vn = s / |d|``, so
     ``J = -(1 + e) vn / (w_i + w_j)`` is ``k = -(1 + e) s / (dd (w_i + w_j))``."""
-    if model is None:
+    if contact is None:
         # Momentum k d moves from j to i; with the reduced mass this reverses the
         # normal relative velocity (elastic).
         return -2.0 * s / (dd * (wi + wj))
-    table = model[0]
-    species = model[1]
-    tc = model[3]
-    t_last = model[4]
-    e = table[species[i], species[j]]
+    species = contact.species
+    tc = contact.tc
+    t_last = contact.t_last
+    e = contact.table[species[i], species[j]]
     if t - t_last[i] < tc or t - t_last[j] < tc:
         e = 1.0  # the TC model: a disk still "in contact" collides elastically
     acc[A_DISSIPATED] += 0.5 * (1.0 - e * e) * s * s / (dd * (wi + wj))
@@ -167,15 +156,13 @@ def _pair_impulse(i, j, t, s, dd, wi, wj, acc, model):
 
 
 @njit
-def _wall_factor(i, t, vn2, wi, acc, model):
+def _wall_factor(i, t, vn2, wi, acc, contact):
     """``1 + e`` for disk ``i`` approaching a wall with the square ``vn2`` of its
     normal velocity."""
-    if model is None:
+    if contact is None:
         return 2.0
-    e = model[2]
-    tc = model[3]
-    t_last = model[4]
-    if t - t_last[i] < tc:
+    e = contact.wall
+    if t - contact.t_last[i] < contact.tc:
         e = 1.0
     acc[A_DISSIPATED] += 0.5 * (1.0 - e * e) * vn2 / wi
     return 1.0 + e
@@ -187,14 +174,14 @@ def _simultaneous(t, before):
 
 
 @njit
-def stalls(i, j, t, invm, model):
+def stalls(i, j, t, invm, contact):
     """Whether the collision of disk ``i`` with disk ``j`` (``j = i`` or ``-1``: a
     wall) at time ``t`` would make a streak of ``STALL_COLLISIONS`` simultaneous
     collisions: the run must stop (an inelastic collapse).  Never for elastic disks."""
-    if model is None:
+    if contact is None:
         return False
-    t_last = model[4]
-    streak = model[5]
+    t_last = contact.t_last
+    streak = contact.streak
     if invm[i] > 0.0 and _simultaneous(t, t_last[i]) and streak[i] + 1 >= STALL_COLLISIONS:
         return True
     return (j >= 0 and invm[j] > 0.0 and _simultaneous(t, t_last[j])
@@ -202,26 +189,26 @@ def stalls(i, j, t, invm, model):
 
 
 @njit
-def _note_collision(i, t, invm, model):
+def _note_collision(i, t, invm, contact):
     """Record that movable disk ``i`` collided at ``t`` (the TC model's clock)."""
-    if model is None:
+    if contact is None:
         return
-    t_last = model[4]
-    streak = model[5]
+    t_last = contact.t_last
+    streak = contact.streak
     if invm[i] > 0.0:
         streak[i] = streak[i] + 1 if _simultaneous(t, t_last[i]) else 0
         t_last[i] = t
 
 
 @njit(inline="always")
-def collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight, growth):
+def collide_pair(i, j, t, aux, S, invm, acc, gf, contact, gravity, growth):
     """Resolve the contact of disks ``i`` and ``j`` (both at time ``t``; ``j`` seen
     through the periodic image shift ``aux``), and add its impulse to the collision
     virial.  A contact that rounding left not approaching exchanges nothing.  Under
     gravity a disk leaves a wall it rested on (:func:`_rest`) if the collision gives
     it a velocity along the wall's normal.
 
-    Under growth ``(rate, t0)`` the contact distance grows at ``dd = (R_i + R_j) rate``:
+    Under growth (``rate``) the contact distance grows at ``dd = (R_i + R_j) rate``:
     with ``vn`` the normal relative velocity (the rate at which the centres part), the
     gap closes at ``dd - vn``; the collision reverses that rate, ``vn' - dd = dd - vn``,
     so that the disks part (elastic in the frame of the growing rims; it adds kinetic
@@ -241,7 +228,7 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight, growth):
     if s < 0.0:
         wi = invm[i]
         wj = invm[j]
-        k = _pair_impulse(i, j, t, s, dd, wi, wj, acc, model)
+        k = _pair_impulse(i, j, t, s, dd, wi, wj, acc, contact)
         S[i, VX] += k * wi * dx
         S[i, VY] += k * wi * dy
         S[j, VX] -= k * wj * dx
@@ -250,11 +237,11 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, model, flight, growth):
         acc[A_VIRIAL] += k * dd
         acc[A_VIRIAL_XX] += k * dx * dx
         acc[A_VIRIAL_YY] += k * dy * dy
-    _note_collision(i, t, invm, model)
-    _note_collision(j, t, invm, model)
-    if flight is not None:
-        _release(i, S, flight[3])
-        _release(j, S, flight[3])
+    _note_collision(i, t, invm, contact)
+    _note_collision(j, t, invm, contact)
+    if gravity is not None:
+        _release(i, S, gravity.support)
+        _release(j, S, gravity.support)
 
 
 @njit
@@ -266,7 +253,7 @@ def _closing_pair(i, j, t, s, S, growth):
     contact predicted now that the response found not closing would come again at
     once, without end)."""
     rr = S[i, R] + S[j, R]
-    return s - (rr * growth_factor(t, growth)) * (rr * growth[0])
+    return s - (rr * growth_factor(t, growth)) * (rr * growth.rate)
 
 
 @njit
@@ -276,7 +263,7 @@ def _closing_wall(i, t, box, end, vn, nx, ny, nn, S, wa, wb, partner, aux, gf, g
     ``(vn, nx, ny, nn)``.  A box wall (unit normal): ``vn - dr``; an end point (``n``
     the separation): ``n.v - r(t) dr``; a segment's side: the unit normal and normal
     velocity of ``predict._segment_frame``, towards the disk's side, less ``dr``."""
-    dr = S[i, R] * growth[0]
+    dr = S[i, R] * growth.rate
     if box:
         return vn - dr, nx, ny, nn
     if end:
@@ -306,7 +293,7 @@ def _release(i, S, support):
 
 
 @njit
-def _rest(i, side, S, invm, acc, model, flight):
+def _rest(i, side, S, invm, acc, contact, gravity):
     """Put disk ``i``, just reflected by box wall ``side``, to rest on it if gravity
     presses it into that wall and it would be back within the TC model's ``tc``: its
     bounces would go on shrinking (or, elastic under the TC rule, never end), so the
@@ -314,23 +301,23 @@ def _rest(i, side, S, invm, acc, model, flight):
     dissipated) is removed, and the disk slides along the wall from now on (see
     :mod:`.flight`).  Only for an inelastic model
     with ``tc > 0`` (``hold``)."""
-    if model is None or flight is None:
+    if contact is None or gravity is None:
         return
     axis = side >> 1
     inward = 1.0 if side % 2 == 0 else -1.0  # the wall's normal, into the box
-    g_n = (flight[0] if axis == 0 else flight[1]) * inward
+    g_n = (gravity.gx if axis == 0 else gravity.gy) * inward
     if g_n >= 0.0:
         return
     vn = S[i, VX + axis] * inward
-    if 2.0 * vn < -g_n * model[6]:
+    if 2.0 * vn < -g_n * contact.hold:
         acc[A_DISSIPATED] += 0.5 * vn * vn / invm[i]
         S[i, VX + axis] = 0.0
-        flight[3][i] |= 1 << side
+        gravity.support[i] |= 1 << side
 
 
 @njit
 def _heated_contact(i, kind, partner, aux, nx, ny, nn, vn, slot, col, S, invm, acc, wacc,
-                    model):
+                    heated, uniforms):
     """The contact of disk ``i`` with a heated wall (normal ``n``, not normalised,
     ``nn = n.n``; ``vn = v.n``): if approaching, the disk leaves with a velocity drawn
     from the wall (:func:`_heat`), and the impulse goes into the wall's tallies as at
@@ -340,7 +327,7 @@ def _heated_contact(i, kind, partner, aux, nx, ny, nn, vn, slot, col, S, invm, a
     ln = math.sqrt(nn)
     k = aux if kind == BOX else 4 + partner
     impulse, jx, jy = _heat(i, k, nx / ln, ny / ln, S, invm, acc, wacc, kind, partner,
-                            model)
+                            heated, uniforms)
     acc[slot] += impulse
     if kind != BOX:
         wacc[partner, W_FX] -= jx
@@ -349,7 +336,7 @@ def _heated_contact(i, kind, partner, aux, nx, ny, nn, vn, slot, col, S, invm, a
 
 
 @njit
-def _heat(i, k, nx, ny, S, invm, acc, wacc, kind, partner, model):
+def _heat(i, k, nx, ny, S, invm, acc, wacc, kind, partner, heated, uniforms):
     """Disk ``i`` leaves heated wall ``k`` (box wall 0-3 or segment ``k - 4``; unit
     normal ``n`` into the gas) with a velocity drawn from the wall's temperature: the
     normal speed from the flux-weighted distribution ``(m vn / kT) exp(-m vn^2 / 2kT)``
@@ -357,12 +344,12 @@ def _heat(i, k, nx, ny, S, invm, acc, wacc, kind, partner, model):
     ``kT / m``.  The kinetic energy gained is added to the wall's heat tally.  Returns
     the normal impulse ``J = m (vn' - vn)`` and the momentum ``m (v' - v)`` the disk
     received."""
-    s = math.sqrt(model[7][k] * invm[i])
+    s = math.sqrt(heated.kt[k] * invm[i])
     vx0 = S[i, VX]
     vy0 = S[i, VY]
     vn_old = vx0 * nx + vy0 * ny
-    vn = s * _thermal(model)
-    vt = s * _gaussian(model)
+    vn = s * _thermal(uniforms)
+    vt = s * _gaussian(uniforms)
     S[i, VX] = vn * nx - vt * ny
     S[i, VY] = vn * ny + vt * nx
     gained = 0.5 * (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]
@@ -376,8 +363,8 @@ def _heat(i, k, nx, ny, S, invm, acc, wacc, kind, partner, model):
 
 
 @njit(inline="always")
-def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model, flight,
-                 growth):
+def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, contact, heated,
+                 uniforms, gravity, growth):
     """Resolve the contact of disk ``i`` (at time ``t``) with box wall ``aux`` (``kind``
     BOX: x=0, x=width, y=0, y=height) or with the wall segment ``partner`` (its side or
     an end point, and its image shift, packed in ``aux``), and add the impulse to that
@@ -430,14 +417,14 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model
     if growth is not None:
         vn, nx, ny, nn = _closing_wall(i, t, kind == BOX, col == W_ENDS, vn, nx, ny, nn, S,
                                        wa, wb, partner, aux, gf, growth)
-    heated = False
-    if model is not None:
-        heated = model[7][aux if kind == BOX else 4 + partner] > 0.0
-    if model is not None and heated:
+    hot = False
+    if heated is not None:
+        hot = heated.kt[aux if kind == BOX else 4 + partner] > 0.0
+    if heated is not None and hot:
         _heated_contact(i, kind, partner, aux, nx, ny, nn, vn, slot, col, S, invm, acc,
-                        wacc, model)
+                        wacc, heated, uniforms)
     elif vn < 0.0:
-        f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, model)
+        f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, contact)
         q = -f * vn / nn  # the velocity change is q n
         S[i, VX] += q * nx
         S[i, VY] += q * ny
@@ -450,9 +437,9 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, model
             wacc[partner, W_FX] -= q * nx / invm[i]
             wacc[partner, W_FY] -= q * ny / invm[i]
             wacc[partner, col] += impulse
-    _note_collision(i, t, invm, model)
-    if flight is not None:
-        if kind == BOX and not heated:
-            _rest(i, aux, S, invm, acc, model, flight)
+    _note_collision(i, t, invm, contact)
+    if gravity is not None:
+        if kind == BOX and not hot:
+            _rest(i, aux, S, invm, acc, contact, gravity)
         else:
-            _release(i, S, flight[3])
+            _release(i, S, gravity.support)

@@ -4,9 +4,8 @@ A disk's event is the earliest of its candidates: contacts with the disks in its
 neighbour cells, with the wall segments listed for its cell and with the box walls
 (:mod:`.predict` gives each contact time), and leaving its cell.  The best candidate
 that is not a cell crossing is kept in the disk's bookkeeping row (the "kept
-candidate": kind, partner, aux, the partner's stamp, and its time ``tc``, the candidate
-time, not the TC model's duration); the scheduled event is the crossing if it comes
-first.
+candidate": kind, partner, aux, the partner's stamp, and its time ``tcand``); the
+scheduled event is the crossing if it comes first.
 
 Why a cell crossing only needs the newly exposed cells: the kept candidate is the
 earliest contact with everything in the old neighbourhood (still exact if its
@@ -57,13 +56,13 @@ from .predict import (
 
 
 @njit
-def _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, flight, best):
+def _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, gravity, best):
     """Under gravity: the contact time of a disk (separation ``d``, velocity ``v``,
     acceleration ``g_i`` at time ``t``) with disk ``j``.  (Not inlined into the scan:
     the straight-line loop would otherwise carry this code through numba's inlining
     before pruning it, which lengthened its compilation.)"""
-    vxj, vyj = velocity_at(j, t, S, flight)
-    gxj, gyj = acceleration(j, flight)
+    vxj, vyj = velocity_at(j, t, S, gravity)
+    gxj, gyj = acceleration(j, gravity)
     if gxi == gxj and gyi == gyj:
         return pair_time(dx, dy, vx - vxj, vy - vyj, r + S[j, R])
     return point_time(dx, dy, vx - vxj, vy - vyj, gxi - gxj, gyi - gyj, r + S[j, R], best)
@@ -71,7 +70,7 @@ def _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, flight, best):
 
 @njit(inline="always")
 def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
-                S, stamp, gi, gf, head, nxt, best, partner, aux, pst, flight, growth):
+                S, stamp, gi, gf, head, nxt, best, partner, aux, pst, gravity, growth):
     """Earliest contact of disk ``i`` (at ``x, y`` with velocity ``vx, vy`` at time
     ``t``) with the disks in the cells at offsets ``[ox0, ox1] x [oy0, oy1]`` from
     ``(cx, cy)``, if before ``best`` (a time interval from ``t``).
@@ -83,7 +82,7 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
 
     Under growth ``r`` is the stored radius ``S[i, R]``, and the contact distance
     ``(r + S[j, R])`` times :func:`growth_factor` grows at ``(r + S[j, R]) rate``."""
-    gxi, gyi = acceleration(i, flight)
+    gxi, gyi = acceleration(i, gravity)
     f = growth_factor(t, growth)
     ncx = gi[0]
     for ox in range(ox0, ox1 + 1):
@@ -97,17 +96,17 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
             j = head[nxc + ncx * nyc]
             while j >= 0:
                 if j != i:
-                    xj, yj = position_at(j, t, S, flight)
+                    xj, yj = position_at(j, t, S, gravity)
                     dx = x - (xj + sx * gf[0])
                     dy = y - (yj + sy * gf[1])
                     if growth is not None:
                         rr = r + S[j, R]
                         dtc = pair_time_grow(dx, dy, vx - S[j, VX], vy - S[j, VY], rr * f,
-                                             rr * growth[0])
-                    elif flight is None:
+                                             rr * growth.rate)
+                    elif gravity is None:
                         dtc = pair_time(dx, dy, vx - S[j, VX], vy - S[j, VY], r + S[j, R])
                     else:
-                        dtc = _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, flight,
+                        dtc = _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, gravity,
                                                best)
                     if dtc < best:
                         best = dtc
@@ -120,7 +119,7 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
 
 @njit(inline="always")
 def _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall, wsx, wsy,
-                best, partner, aux, flight, growth):
+                best, partner, aux, gravity, growth):
     """Earliest contact with the wall segments listed for cell ``c``, if before ``best``
     (``gx, gy``: the disk's acceleration under gravity; ``dr``: its radius's growth
     speed under growth)."""
@@ -134,7 +133,7 @@ def _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall, wsx, 
             dtw, part = segment_time_grow(x, y, vx, vy, r, dr,
                                           wa[w, 0] + shx, wa[w, 1] + shy,
                                           wb[w, 0] + shx, wb[w, 1] + shy)
-        elif flight is None or (gx == 0.0 and gy == 0.0):
+        elif gravity is None or (gx == 0.0 and gy == 0.0):
             dtw, part = segment_time(x, y, vx, vy, r,
                                      wa[w, 0] + shx, wa[w, 1] + shy,
                                      wb[w, 0] + shx, wb[w, 1] + shy)
@@ -150,10 +149,10 @@ def _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall, wsx, 
 
 
 @njit(inline="always")
-def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tc, E, gi, gf, flight):
+def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tcand, E, gi, gf, gravity):
     """The time of disk ``i``'s next event: the earlier of its kept candidate and
     leaving its cell (whose direction is recorded in ``E[i, KIND]``)."""
-    if flight is None:
+    if gravity is None:
         dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
         dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
     else:
@@ -165,12 +164,12 @@ def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tc, E, gi, gf, flight):
     else:
         aux = 0 if dirx > 0 else 1
     E[i, KIND] = pack_kind(kind_of(E[i, KIND]), aux)
-    return min(tc[i], t + dtx)
+    return min(tcand[i], t + dtx)
 
 
 @njit(inline="always")
-def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
-            wa, wb, wstart, wwall, wsx, wsy, flight, growth):
+def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
+            wa, wb, wstart, wwall, wsx, wsy, gravity, growth):
     """Predict disk ``i``'s next event from time ``t``, keep its best non-crossing
     candidate, and return the time of the scheduled event.
 
@@ -180,25 +179,25 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
     still valid only the newly exposed row of 3 cells (and the cell's walls) is
     scanned against it, otherwise the prediction is a full one.
 
-    ``growth``: ``None``, or ``(rate, t0)`` for radii that grow (:func:`growth_factor`).
+    ``growth``: ``None``, or radii that grow (``layout.Growth``, :func:`growth_factor`).
 
     (One function for both, compiled into the event loop at a single place.)
     """
     partial = direction >= 0 and not (
         kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
-    if flight is None:
+    if gravity is None:
         vx = S[i, VX]
         vy = S[i, VY]
         gx = 0.0
         gy = 0.0
     else:
-        vx, vy = velocity_at(i, t, S, flight)
-        gx, gy = acceleration(i, flight)
-    x, y = position_at(i, t, S, flight)
+        vx, vy = velocity_at(i, t, S, gravity)
+        gx, gy = acceleration(i, gravity)
+    x, y = position_at(i, t, S, gravity)
     r = S[i, R]
     dr = 0.0
     if growth is not None:
-        dr = r * growth[0]
+        dr = r * growth.rate
         r *= growth_factor(t, growth)
     c = E[i, CELL]
     cy = c // gi[0]
@@ -213,7 +212,7 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
             ox0, ox1, oy0, oy1 = -1, 1, 1, 1
         else:
             ox0, ox1, oy0, oy1 = -1, 1, -1, -1
-        best = tc[i] - t
+        best = tcand[i] - t
         kind = NONE  # stays NONE unless something beats the kept candidate
         aux = 0
     else:
@@ -230,7 +229,7 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
         if gi[2] == 0:
             if growth is not None:
                 dtw, side = box_wall_time_grow(x, vx, r, dr, gf[0])
-            elif flight is None:
+            elif gravity is None:
                 dtw, side = box_wall_time(x, vx, r, gf[0])
             else:
                 dtw, side = box_wall_time_accel(x, vx, gx, r, gf[0])
@@ -241,7 +240,7 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
         if gi[3] == 0:
             if growth is not None:
                 dtw, side = box_wall_time_grow(y, vy, r, dr, gf[1])
-            elif flight is None:
+            elif gravity is None:
                 dtw, side = box_wall_time(y, vy, r, gf[1])
             else:
                 dtw, side = box_wall_time_accel(y, vy, gy, r, gf[1])
@@ -252,7 +251,7 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
     partner = -1
     pst = 0
     bd, pd, ad, ps = _scan_disks(i, t, x, y, vx, vy, S[i, R], cx, cy, ox0, ox1, oy0, oy1,
-                                 S, stamp, gi, gf, head, nxt, best, -1, 0, 0, flight,
+                                 S, stamp, gi, gf, head, nxt, best, -1, 0, 0, gravity,
                                  growth)
     if bd < best:
         best = bd
@@ -261,7 +260,7 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
         aux = ad
         pst = ps
     bw, pw, aw = _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall,
-                             wsx, wsy, best, -1, 0, flight, growth)
+                             wsx, wsy, best, -1, 0, gravity, growth)
     if bw < best:
         best = bw
         kind = SEGMENT
@@ -269,10 +268,10 @@ def predict(i, t, direction, S, E, tc, stamp, gi, gf, head, nxt,
         aux = aw
         pst = 0
     if not partial or kind != NONE:
-        tc[i] = t + best
+        tcand[i] = t + best
         E[i, KIND] = kind
         E[i, PARTNER] = partner
         E[i, AUX] = aux
         E[i, PSTAMP] = pst
-    return _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tc, E, gi, gf, flight)
+    return _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tcand, E, gi, gf, gravity)
 

@@ -9,15 +9,54 @@ assertions vanish under ``python -O``.
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import numbers
 
 import numpy as np
 
 __all__ = ["as_float_array", "per_disk", "as_count", "as_positive_float", "indices_where",
-           "as_generator"]
+           "as_generator", "about", "refusal", "argument_of"]
 
 _MAX_LISTED = 10
 _MAX_COUNT = int(np.iinfo(np.int64).max)
+
+
+@contextlib.contextmanager
+def about(name: str):
+    """Errors (``TypeError``, ``ValueError``) raised inside are about the argument
+    ``name``: :func:`argument_of` tells it, so that a caller (the configuration loader)
+    can point at its own key for that argument without reading the message.  An outer
+    ``about`` has the last word: a check of ``wall_temperatures`` is about that
+    keyword, whatever its inner checks called the value."""
+    try:
+        yield
+    except (TypeError, ValueError) as exc:
+        exc.edmd2d_argument = name
+        raise
+
+
+def refusal(kind: type, argument: str, message: str) -> Exception:
+    """An error ``kind(message)`` about ``argument`` (see :func:`about`), to raise."""
+    exc = kind(message)
+    exc.edmd2d_argument = argument
+    return exc
+
+
+def argument_of(exc: BaseException) -> str | None:
+    """The argument an error is about (see :func:`about`), or ``None``."""
+    return getattr(exc, "edmd2d_argument", None)
+
+
+def _names_argument(check):
+    """Errors of ``check(name, ...)`` are about ``name``."""
+
+    @functools.wraps(check)
+    def checked(name, *args, **kwargs):
+        with about(name):
+            return check(name, *args, **kwargs)
+
+    return checked
 
 
 def indices_where(mask: np.ndarray) -> str:
@@ -28,6 +67,7 @@ def indices_where(mask: np.ndarray) -> str:
     return f"[{shown}{more}]"
 
 
+@_names_argument
 def as_float_array(
     name: str,
     value,
@@ -74,6 +114,7 @@ def as_float_array(
     return arr
 
 
+@_names_argument
 def per_disk(name: str, value, n: int, *, allow_inf: bool = False) -> np.ndarray:
     """A per-disk quantity: a scalar broadcast to ``(n,)`` or an array of shape ``(n,)``."""
     if value is None:
@@ -84,6 +125,7 @@ def per_disk(name: str, value, n: int, *, allow_inf: bool = False) -> np.ndarray
     return as_float_array(name, value, (n,), allow_inf=allow_inf)
 
 
+@_names_argument
 def as_count(name: str, value, minimum: int = 0) -> int:
     """An integer >= ``minimum`` (a number of collisions, disks, frames...)."""
     if isinstance(value, bool) or not isinstance(value, (numbers.Integral, np.integer)):
@@ -99,6 +141,7 @@ def as_count(name: str, value, minimum: int = 0) -> int:
     return value
 
 
+@_names_argument
 def as_positive_float(name: str, value, *, allow_zero: bool = False) -> float:
     """A finite scalar > 0 (or >= 0 with ``allow_zero``)."""
     if isinstance(value, bool) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
@@ -117,6 +160,7 @@ def _fmt(shape: tuple) -> str:
     return "(" + ", ".join(parts) + ("," if len(parts) == 1 else "") + ")"
 
 
+@_names_argument
 def as_generator(name: str, seed) -> np.random.Generator:
     """``numpy.random.default_rng(seed)``, whose errors name the argument."""
     try:

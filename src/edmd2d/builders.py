@@ -19,7 +19,14 @@ import numpy as np
 
 from . import _placement
 from ._sums import weighted_sum
-from ._validate import as_count, as_generator, as_positive_float, indices_where, per_disk
+from ._validate import (
+    as_count,
+    as_generator,
+    as_positive_float,
+    indices_where,
+    per_disk,
+    refusal,
+)
 from .contacts import _segment_distance
 from .geometry import Box, Wall
 from .simulation import Simulation
@@ -166,7 +173,8 @@ def make_gas(
     rad = _disk_radii(n, radius, radii)
     mass = per_disk("masses", masses, n)
     if (mass <= 0).any():
-        raise ValueError(f"masses must be > 0; disks {indices_where(mass <= 0)} are not")
+        raise refusal(ValueError, "masses",
+                      f"masses must be > 0; disks {indices_where(mass <= 0)} are not")
     segs = _as_wall_list(walls)
     rng = as_generator("seed", seed)
 
@@ -176,11 +184,10 @@ def make_gas(
     sites = _triangular_sites(n, box, dmax * (1.0 + _GAP))
     if sites is None:
         limit = lattice_packing_limit(n, radii=rad, aspect=aspect, periodic=periodic)
-        raise ValueError(
-            f"packing_fraction {phi} cannot be reached from a lattice start for these "
-            f"{n} disks (largest diameter {dmax:g}, aspect {aspect:g}, periodic="
-            f"{box.periodic}): the limit is about {limit:.4f}"
-        )
+        raise refusal(ValueError, "packing_fraction",
+                      f"packing_fraction {phi} cannot be reached from a lattice start for these "
+                      f"{n} disks (largest diameter {dmax:g}, aspect {aspect:g}, periodic="
+                      f"{box.periodic}): the limit is about {limit:.4f}")
     pick = np.sort(rng.choice(len(sites), size=n, replace=False))
     pos = sites[pick]
     if radii is not None:
@@ -321,12 +328,12 @@ def random_packing(
     n = as_count("n", n, minimum=1)
     phi = as_positive_float("packing_fraction", packing_fraction)
     if phi > _RSA_LIMIT:
-        raise ValueError(
-            f"packing_fraction {phi} is too high for random sequential addition, which "
-            f"saturates near 0.547 for equal disks (Hinrichsen, Feder and Jossang 1986) "
-            f"and slows down without bound on the way: at most {_RSA_LIMIT}.  Place the "
-            "disks at a lower packing fraction and compress them (grow the disks in a "
-            "simulation), or start from a lattice with make_gas")
+        raise refusal(ValueError, "packing_fraction",
+                      f"packing_fraction {phi} is too high for random sequential addition, which "
+                      f"saturates near 0.547 for equal disks (Hinrichsen, Feder and Jossang 1986) "
+                      f"and slows down without bound on the way: at most {_RSA_LIMIT}.  Place the "
+                      "disks at a lower packing fraction and compress them (grow the disks in a "
+                      "simulation), or start from a lattice with make_gas")
     aspect = as_positive_float("aspect", aspect)
     max_attempts = as_count("max_attempts", max_attempts, minimum=1)
     rad = _disk_radii(n, radius, radii)
@@ -337,10 +344,10 @@ def random_packing(
     reach = 2.0 * rmax * (1.0 + _GAP)
     for axis, length in enumerate((box.width, box.height)):
         if length <= reach:
-            raise ValueError(
-                f"the box ({box.width:.6g} x {box.height:.6g} for aspect {aspect:g}) is "
-                f"too narrow along {'xy'[axis]} for the largest disk (diameter "
-                f"{2 * rmax:g}): make the aspect closer to 1 or use more disks")
+            raise refusal(ValueError, "aspect",
+                          f"the box ({box.width:.6g} x {box.height:.6g} for aspect {aspect:g}) is "
+                          f"too narrow along {'xy'[axis]} for the largest disk (diameter "
+                          f"{2 * rmax:g}): make the aspect closer to 1 or use more disks")
     order = np.argsort(-rad, kind="stable")
     r_sorted = np.ascontiguousarray(rad[order])
     lo = np.zeros((n, 2))
@@ -429,7 +436,8 @@ def random_gas(
                                    aspect=aspect, periodic=periodic, seed=rng)
     mass = per_disk("masses", masses, len(pos))
     if (mass <= 0).any():
-        raise ValueError(f"masses must be > 0; disks {indices_where(mass <= 0)} are not")
+        raise refusal(ValueError, "masses",
+                      f"masses must be > 0; disks {indices_where(mass <= 0)} are not")
     _check_walls_in(segs, box, "random_gas")
     pos, rad, mass = _leave_out_crossed(pos, rad, mass, segs, box, "random_gas", "placed")
     vel = _maxwell_boltzmann(rng, mass, temperature, 0 if segs else sum(box.periodic))
@@ -475,14 +483,16 @@ def _as_wall_list(walls) -> list:
     if isinstance(walls, Wall):
         return [walls]
     if isinstance(walls, (str, bytes, np.ndarray)) or not hasattr(walls, "__iter__"):
-        raise TypeError(f"walls must be an edmd2d.Wall or a sequence of them, got "
-                        f"{type(walls).__name__}; for a polygon pass "
-                        "walls=edmd2d.Wall.polygon(vertices)")
+        raise refusal(TypeError, "walls",
+                      f"walls must be an edmd2d.Wall or a sequence of them, got "
+                      f"{type(walls).__name__}; for a polygon pass "
+                      "walls=edmd2d.Wall.polygon(vertices)")
     items = list(walls)
     for k, w in enumerate(items):
         if not isinstance(w, Wall):
-            raise TypeError(f"walls[{k}] must be an edmd2d.Wall, got {type(w).__name__} "
-                            f"({w!r}); for a polygon pass walls=edmd2d.Wall.polygon(vertices)")
+            raise refusal(TypeError, "walls",
+                          f"walls[{k}] must be an edmd2d.Wall, got {type(w).__name__} "
+                          f"({w!r}); for a polygon pass walls=edmd2d.Wall.polygon(vertices)")
     return items
 
 
@@ -491,10 +501,10 @@ def _check_walls_in(segs, box: Box, caller: str) -> None:
     for k, w in enumerate(segs):
         for pt in (w.start, w.end):
             if not (0.0 <= pt[0] <= box.width and 0.0 <= pt[1] <= box.height):
-                raise ValueError(
-                    f"walls[{k}] has an end point {tuple(pt)} outside the box [0, "
-                    f"{box.width:.6g}] x [0, {box.height:.6g}] that {caller} made for "
-                    "these disks at this packing fraction: place the walls inside it")
+                raise refusal(ValueError, "walls",
+                              f"walls[{k}] has an end point {tuple(pt)} outside the box [0, "
+                              f"{box.width:.6g}] x [0, {box.height:.6g}] that {caller} made for "
+                              "these disks at this packing fraction: place the walls inside it")
 
 
 def _leave_out_crossed(pos, rad, mass, segs, box: Box, caller: str, what: str):
@@ -505,8 +515,9 @@ def _leave_out_crossed(pos, rad, mass, segs, box: Box, caller: str, what: str):
     keep = clear_of_walls(pos, rad, segs, box)
     kept = int(keep.sum())
     if kept == 0:
-        raise ValueError(f"walls: the wall segments cross every one of the {len(pos)} "
-                         f"{what} disks; {caller} has no disk left to start from")
+        raise refusal(ValueError, "walls",
+                      f"walls: the wall segments cross every one of the {len(pos)} "
+                      f"{what} disks; {caller} has no disk left to start from")
     if kept < len(pos):
         phi = float(np.pi * np.sum(rad[keep] ** 2)) / box.area
         warnings.warn(
@@ -536,11 +547,11 @@ def _place(rng, rad, lo, span, box: Box, reach, max_attempts, phi):
             return pos
         if status == _placement.STALLED:
             placed = float(np.pi * np.sum(rad[:k] ** 2)) / box.area
-            raise ValueError(
-                f"random sequential addition stalled: disk {k + 1} of {n} (radius "
-                f"{rad[k]:g}, placed largest first) found no room in {max_attempts} "
-                f"attempts at packing fraction {placed:.4f} of the {phi} asked; lower "
-                "packing_fraction and compress, or raise max_attempts")
+            raise refusal(ValueError, "packing_fraction",
+                          f"random sequential addition stalled: disk {k + 1} of {n} (radius "
+                          f"{rad[k]:g}, placed largest first) found no room in {max_attempts} "
+                          f"attempts at packing fraction {placed:.4f} of the {phi} asked; lower "
+                          "packing_fraction and compress, or raise max_attempts")
 
 
 def _disk_radii(n: int, radius, radii) -> np.ndarray:
@@ -549,7 +560,8 @@ def _disk_radii(n: int, radius, radii) -> np.ndarray:
         return per_disk("radius", as_positive_float("radius", radius), n)
     rad = per_disk("radii", radii, n)
     if (rad <= 0).any():
-        raise ValueError(f"radii must be > 0; disks {indices_where(rad <= 0)} are not")
+        raise refusal(ValueError, "radii",
+                      f"radii must be > 0; disks {indices_where(rad <= 0)} are not")
     return rad
 
 

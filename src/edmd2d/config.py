@@ -65,8 +65,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import builders
-from ._validate import as_generator
+from . import builders, physics
+from ._validate import argument_of, as_generator
 from .builders import make_gas, random_gas
 from .geometry import BOX_WALLS, Wall
 from .simulation import Simulation
@@ -243,14 +243,22 @@ _SPECIES = {
     "count": (_integer(0), OPTIONAL),
     "fraction": (_number(0.0, 1.0), OPTIONAL),
 }
+# What a file's value of each kind of physics keyword (edmd2d.physics.Keyword.kind) must
+# look like; the library checks the rest when it builds the system.  "walls" (heated
+# walls) has a check of its own, _check_wall_temperatures.
+_KINDS = {
+    "coefficients": _restitution,
+    "coefficient": _number(0.0, 1.0, lo_open=True),
+    "duration": _number(0.0),
+    "vector": _vector(),
+}
+# [model]: the keywords of every physics family that files take, and the seed.
 _MODEL = {
-    "restitution": (_restitution, 1.0),
-    "wall_restitution": (_number(0.0, 1.0, lo_open=True), 1.0),
-    "tc": (_number(0.0), OPTIONAL),
-    "gravity": (_vector(), OPTIONAL),
-    "thermostat": (_vector(), OPTIONAL),
+    **{kw.name: (_KINDS[kw.kind], OPTIONAL if kw.default is None else kw.default)
+       for kw in physics.KEYWORDS.values() if kw.kind in _KINDS},
     "seed": (_integer(0), OPTIONAL),
 }
+_MODEL_OWN_CHECK = tuple(kw.name for kw in physics.KEYWORDS.values() if kw.kind == "walls")
 _WALL = {
     "start": (_vector(), OPTIONAL),
     "end": (_vector(), OPTIONAL),
@@ -346,7 +354,7 @@ def loads(text: str, path: str = "<config>") -> RunConfig:
             raise cfg.error((name,), f"expected a table [{name}], got {_shown(value)}")
         data[name] = _check_table(cfg, (name,), value, schema,
                                   skip=("species",) if name == "gas" else
-                                  ("wall_temperatures",) if name == "model" else ())
+                                  _MODEL_OWN_CHECK if name == "model" else ())
     _check_species(cfg, raw["gas"])
     _check_wall_temperatures(cfg, raw.get("model", {}))
     _check_walls(cfg, raw.get("walls", []))
@@ -724,11 +732,9 @@ _ARGUMENT_KEYS = {
     "temperature": ("gas", "temperature"), "radius": ("gas", "radius"),
     "radii": ("gas", "species"), "masses": ("gas", "mass"), "aspect": ("gas", "aspect"),
     "periodic": ("gas", "periodic"), "species": ("gas", "species"),
-    "restitution": ("model", "restitution"),
-    "wall_restitution": ("model", "wall_restitution"), "tc": ("model", "tc"),
-    "gravity": ("model", "gravity"), "thermostat": ("model", "thermostat"),
-    "wall_temperatures": ("model", "wall_temperatures"), "walls": ("walls",),
-    "positions": ("walls",), "velocities": ("walls",),
+    "walls": ("walls",), "positions": ("walls",), "velocities": ("walls",),
+    "seed": ("model", "seed"),
+    **{kw.name: ("model", kw.name) for kw in physics.KEYWORDS.values() if kw.kind},
 }
 
 
@@ -812,7 +818,7 @@ def build(cfg: RunConfig, seed: int):
     except (TypeError, ValueError) as exc:
         if isinstance(exc, ConfigError):
             raise
-        raise cfg.error(_key_of_message(str(exc)), str(exc)) from None
+        raise cfg.error(_ARGUMENT_KEYS.get(argument_of(exc), ()), str(exc)) from None
     return sim, int((~keep).sum())
 
 
@@ -833,16 +839,6 @@ def _species_labels(radii: np.ndarray, species: list, rng) -> np.ndarray:
         labels[where] = members if len(ids) == 1 else rng.permutation(members)
     return labels
 
-
-
-def _key_of_message(message: str) -> tuple:
-    """The configuration key behind a library error: the keyword it names first."""
-    best, where = (), len(message) + 1
-    for name, key in _ARGUMENT_KEYS.items():
-        found = re.search(rf"(?<![\w.]){re.escape(name)}(?!\w)", message)
-        if found and found.start() < where:
-            best, where = key, found.start()
-    return best
 
 
 # ------------------------------------------------------------------ messages and lines

@@ -53,7 +53,6 @@ import numpy as np
 
 from ._engine import layout as _layout
 from ._engine import response as _response
-from ._validate import as_float_array
 
 __all__ = ["Model", "STALL_COLLISIONS", "default_tc"]
 
@@ -243,52 +242,6 @@ class Model:
 
 # (The name of the class before it held more than restitution: old pickles refer to it.)
 Restitution = Model
-
-
-def restitution_table(value, n_species: int) -> np.ndarray:
-    """Validate ``restitution``: a scalar or an ``(S, S)`` symmetric table (``S`` at
-    least ``n_species``), each entry in ``(0, 1]``; returns the table."""
-    arr = np.asarray(value, dtype=object)
-    if arr.ndim == 0:  # (as_float_array names the argument for any bad scalar)
-        e = float(as_float_array("restitution", value, ()))
-        if not 0.0 < e <= 1.0:
-            raise ValueError(f"restitution must lie in (0, 1], got {e}")
-        return np.full((n_species, n_species), e)
-    table = as_float_array("restitution", value, (None, None)) if arr.ndim == 2 else None
-    if table is None or table.shape[0] != table.shape[1]:
-        raise ValueError(f"restitution must be a scalar or a square (S, S) table, got "
-                         f"shape {arr.shape}")
-    if table.shape[0] < n_species:
-        raise ValueError(f"restitution is a table for {table.shape[0]} species, but the "
-                         f"disks have {n_species} species (0 to {n_species - 1})")
-    table = as_float_array("restitution", table, table.shape)
-    bad = ~((table > 0.0) & (table <= 1.0))
-    if bad.any():
-        a, b = np.argwhere(bad)[0]
-        raise ValueError(f"restitution[{a}, {b}] = {table[a, b]} is outside (0, 1]")
-    if not np.array_equal(table, table.T):
-        a, b = np.argwhere(table != table.T)[0]
-        raise ValueError(
-            f"restitution must be symmetric: restitution[{a}, {b}] = {table[a, b]} but "
-            f"restitution[{b}, {a}] = {table[b, a]}"
-        )
-    return table
-
-
-def wall_coefficient(value) -> float:
-    """Validate ``wall_restitution``: a scalar in ``(0, 1]``."""
-    e = float(as_float_array("wall_restitution", value, ()))
-    if not 0.0 < e <= 1.0:
-        raise ValueError(f"wall_restitution must lie in (0, 1], got {e}")
-    return e
-
-
-def tc_value(value) -> float:
-    """Validate ``tc``: a finite scalar ``>= 0``."""
-    tc = float(as_float_array("tc", value, ()))
-    if not tc >= 0.0:
-        raise ValueError(f"tc must be >= 0, got {tc}")
-    return tc
 
 
 def as_species(value, n: int) -> np.ndarray:

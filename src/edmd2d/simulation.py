@@ -13,6 +13,7 @@ import numpy as np
 from . import _operations
 from . import measurements as _measurements
 from . import models as _models
+from . import physics as _physics
 from . import progress as _progress
 from ._engine import aligned_rows
 from ._engine import flight as _flight
@@ -23,7 +24,7 @@ from ._engine import overlap as _overlap
 from ._engine import queue as _queue
 from ._facade import SimulationBase
 from ._sums import dot, weighted_sum
-from ._validate import as_count, as_float_array, as_generator, indices_where, per_disk
+from ._validate import about, as_count, as_float_array, as_generator, indices_where, per_disk
 from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, MAX_LENGTH, Box, Wall, as_walls
 
 __all__ = ["Simulation", "Counts"]
@@ -254,14 +255,18 @@ class Simulation(SimulationBase):
             raise ValueError(f"masses must be at least {np.finfo(np.float64).tiny:.3g} (a "
                              f"normal float64, whose inverse is finite); disks "
                              f"{indices_where(tiny)} are not")
-        wall_list = as_walls(walls)
+        with about("walls"):
+            wall_list = as_walls(walls)
         t0 = as_float_array("time", time, ())
         self._box = box
         self._walls = tuple(wall_list)
-        self._gravity = _as_gravity(gravity)
-        growth = _as_growth(growth)
-        pos = self._check_in_box(pos, rad)
-        self._check_walls_in_box()
+        g = _physics.Gravity.check(gravity=gravity)
+        self._gravity = None if g is None else g.g
+        growth = _physics.Growth.check(growth=growth)
+        with about("positions"):
+            pos = self._check_in_box(pos, rad)
+        with about("walls"):
+            self._check_walls_in_box()
         self._check_room(vel, rad)
 
         dmax = 2.0 * float(rad.max())
@@ -279,11 +284,13 @@ class Simulation(SimulationBase):
                     f"cell_size must be at least the largest diameter {dmax}, got {cell_size}"
                 )
         user_species, model = _build_model(
-            species, restitution, wall_restitution, tc, rad, vel, mass,
-            _wall_temperatures(wall_temperatures, box, len(wall_list)),
-            _thermostat(thermostat), seed, float(t0))
+            species, rad, vel, mass, float(t0), seed,
+            restitution=restitution, wall_restitution=wall_restitution, tc=tc,
+            wall_temperatures=_physics.HeatedWalls.check(
+                wall_temperatures=wall_temperatures, box=box, n_segments=len(wall_list)),
+            thermostat=_physics.Thermostat.check(thermostat=thermostat))
         if growth is not None:
-            _check_growth_physics(model, self._gravity)
+            growth.check_combination(model, self._gravity)
 
         # Per-disk state and bookkeeping, one 64-byte row each in S and E (see
         # _engine/layout.py for the columns).
@@ -314,9 +321,10 @@ class Simulation(SimulationBase):
         # Each segment's impulses and contacts (layout.W_*), summed by the engine.
         self._wacc = np.zeros((len(wall_list), _layout.N_WACC))
         self._cell_size = cell_size
-        self._growth = None if growth is None else np.array([growth, float(t0)])
+        self._growth = None if growth is None else np.array([growth.rate, float(t0)])
         self._build_grid(pos, self._grid_diameter(dmax), cell_size)
-        self._check_overlaps(pos, rad)
+        with about("positions"):
+            self._check_overlaps(pos, rad)
         _layout.support_view(state)[:] = self._resting(pos, vel, rad, mass, model)
 
         self._species = None if species is None else user_species
@@ -435,13 +443,13 @@ class Simulation(SimulationBase):
         The grid is rebuilt whenever the disks have grown by 10%; a run that would
         take the largest disk past the size of the box is refused.
         """
-        rate = _as_growth(rate)
-        if rate is not None:
-            _check_growth_physics(self._model, self._gravity)
+        growth = _physics.Growth.check(growth=rate)
+        if growth is not None:
+            growth.check_combination(self._model, self._gravity)
         radii = self._S[:, _layout.R] * self._growth_factor(self._time)
         self._S[:, _layout.R] = radii
-        self._growth = None if rate is None else np.array([rate, self._time])
-        if rate is None:
+        self._growth = None if growth is None else np.array([growth.rate, self._time])
+        if growth is None:
             self._predict_all()
         else:
             self._regrid()  # (a grid with room to grow)
@@ -1560,109 +1568,22 @@ class Simulation(SimulationBase):
                 for batch in self._recorded for e in batch]
 
 
-def _build_model(species, restitution, wall_restitution, tc, rad, vel, mass,
-                 wall_kt, thermostat=None, seed=None, time=0.0):
-    """Validate the physics keywords; ``(species, model)``: the species in user order
+def _build_model(species, rad, vel, mass, time, seed, *, restitution, wall_restitution,
+                 tc, wall_temperatures, thermostat):
+    """Check the physics keywords; ``(species, model)``: the species in user order
     (int32) and the :class:`~edmd2d.models.Model`, or ``None`` for elastic disks
     between reflecting walls without a thermostat (the engine's default path)."""
-    spec = _models.as_species(species, len(rad))
-    scalar = np.ndim(restitution) == 0
-    # (One coefficient for every pair: a 1x1 table that every disk reads as species 0.)
-    table = _models.restitution_table(restitution, 1 if scalar else int(spec.max()) + 1)
-    wall = _models.wall_coefficient(wall_restitution)
-    tc = (_models.default_tc(rad, vel, np.isfinite(mass)) if tc is None
-          else _models.tc_value(tc))
-    heated = bool((wall_kt > 0.0).any())
-    if (table == 1.0).all() and wall == 1.0 and not heated and thermostat is None:
+    with about("species"):
+        spec = _models.as_species(species, len(rad))
+    contact = _physics.Restitution.check(
+        restitution=restitution, wall_restitution=wall_restitution, tc=tc, species=spec,
+        radii=rad, velocities=vel, masses=mass)
+    heated = wall_temperatures.active
+    if contact.elastic and not heated and thermostat is None:
         return spec, None
     rng = None
     if heated or thermostat is not None:
         rng = as_generator("seed", seed)
-    return spec, _models.Model(table, wall, tc, np.zeros_like(spec) if scalar else spec,
-                               wall_kt, thermostat, rng, time)
-
-
-_BOX_WALL_ALIASES = {**{name: k for k, name in enumerate(BOX_WALLS)},
-                     **{name: k for k, name in enumerate(BOX_WALL_EQUATIONS)}}
-
-
-def _wall_temperatures(value, box: Box, n_segments: int):
-    """Validate ``wall_temperatures``; ``kT`` per box wall and segment (4 + S), 0 where
-    not heated."""
-    if value is None:
-        return np.zeros(4 + n_segments)
-    if not isinstance(value, dict):
-        raise TypeError("wall_temperatures must be a dict {wall: kT} (wall: 'left', "
-                        f"'right', 'bottom', 'top' or a segment index), got {value!r}")
-    kt = np.zeros(4 + n_segments)
-    for key, temperature in value.items():
-        label = f"wall_temperatures[{key!r}]"
-        if isinstance(key, str):
-            if key not in _BOX_WALL_ALIASES:
-                raise ValueError(f"{label}: no box wall is called {key!r}; use one of "
-                                 f"{sorted(_BOX_WALL_ALIASES)}")
-            k = _BOX_WALL_ALIASES[key]
-            if box.periodic[k // 2]:
-                raise ValueError(f"{label}: the {'xy'[k // 2]} axis of the box is "
-                                 "periodic, so it has no wall to heat")
-        elif isinstance(key, (int, np.integer)) and not isinstance(key, bool):
-            if not 0 <= key < n_segments:
-                raise ValueError(f"{label}: there are {n_segments} wall segments "
-                                 f"(indices 0 to {n_segments - 1})")
-            k = 4 + int(key)
-        else:
-            raise TypeError(f"{label}: a wall is a box wall's name or a segment index, "
-                            f"got {type(key).__name__}")
-        t = float(as_float_array(label, temperature, ()))
-        if not t > 0.0:
-            raise ValueError(f"{label} must be a temperature kT > 0, got {t}")
-        if kt[k] > 0.0:
-            raise ValueError(f"{label}: that wall was given a temperature already "
-                             "(under another of its names)")
-        kt[k] = t
-    return kt
-
-
-def _thermostat(value):
-    """Validate ``thermostat``: ``None`` or ``(kT > 0, rate >= 0)``; ``None`` also for a
-    zero rate."""
-    if value is None:
-        return None
-    arr = as_float_array("thermostat", value, (2,))
-    kt, rate = float(arr[0]), float(arr[1])
-    if not kt > 0.0:
-        raise ValueError(f"thermostat temperature kT must be > 0, got {kt}")
-    if not rate >= 0.0:
-        raise ValueError(f"thermostat rate must be >= 0, got {rate}")
-    return None if rate == 0.0 else (kt, rate)
-
-
-def _as_growth(rate):
-    """Validate a growth rate: ``None`` (fixed radii, also for 0) or a float > 0."""
-    if rate is None:
-        return None
-    value = float(as_float_array("growth", rate, ()))
-    if value < 0.0:
-        raise ValueError(f"growth must be >= 0 (a rate per unit time), got {value}")
-    return value if value > 0.0 else None
-
-
-def _check_growth_physics(model, gravity) -> None:
-    """Growth is for elastic disks in free flight: refuse the rest."""
-    if gravity is not None:
-        raise ValueError("growth does not combine with gravity: growing disks fly "
-                         "on straight lines")
-    if model is not None:
-        raise ValueError("growth works with elastic disks between reflecting walls: "
-                         "not with restitution below 1, heated walls or a thermostat")
-
-
-def _as_gravity(gravity):
-    """Validate ``gravity``: ``None`` (or zero) for straight flights, else a finite
-    float64 2-vector."""
-    if gravity is None:
-        return None
-    g = np.array(as_float_array("gravity", gravity, (2,)))
-    if not (g != 0.0).any():
-        return None  # (the straight-line engine: the same flights, faster)
-    return g
+    return spec, _models.Model(
+        contact.table, contact.wall, contact.tc, contact.species, wall_temperatures.kt,
+        None if thermostat is None else (thermostat.temperature, thermostat.rate), rng, time)

@@ -1,0 +1,419 @@
+"""The physics families beyond elastic hard disks, each checked in one place.
+
+A family is a small class that validates its keywords once and holds the result:
+:class:`Restitution` (with the TC model), :class:`Gravity`, :class:`HeatedWalls`,
+:class:`Thermostat` and :class:`Growth`.  Each declares the keywords it takes
+(:class:`Keyword`: name, default, the kind of value a configuration file gives, one line
+of description) and is listed in :data:`FAMILIES`.  :class:`~edmd2d.Simulation` takes
+these keywords and builds each family from them; the ``[model]`` table of a run
+configuration (:mod:`edmd2d.config`) is derived from the same declarations.
+
+An error about a keyword's value carries that keyword, so that the configuration
+loader points at the right key of a file without reading the message.
+
+Examples
+--------
+>>> from edmd2d import physics
+>>> [family.name for family in physics.FAMILIES]
+['restitution', 'gravity', 'heated_walls', 'thermostat', 'growth']
+>>> physics.Thermostat.check(thermostat=(1.0, 0.5))
+Thermostat(temperature=1.0, rate=0.5)
+>>> physics.Gravity.check(gravity=(0.0, 0.0)) is None   # (no gravity: straight flights)
+True
+>>> physics.KEYWORDS["tc"].doc
+"the TC model's duration (default 1e-5 of a diameter's crossing time)"
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from . import models as _models
+from ._validate import about, as_float_array
+from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, Box
+
+__all__ = ["Keyword", "Family", "FAMILIES", "KEYWORDS", "Restitution", "Gravity",
+           "HeatedWalls", "Thermostat", "Growth"]
+
+
+@dataclass(frozen=True)
+class Keyword:
+    """One keyword of a physics family, as :class:`~edmd2d.Simulation` and a
+    configuration file take it.
+
+    Attributes
+    ----------
+    name : str
+        The keyword (and the key of the ``[model]`` table).
+    default : object
+        Its value when not given.
+    kind : str
+        What a configuration file gives: ``"coefficient"`` (a number in ``(0, 1]``),
+        ``"coefficients"`` (one, or a square table per pair of species),
+        ``"duration"`` (a number ``>= 0``), ``"vector"`` (two numbers) or
+        ``"walls"`` (a table ``{wall = kT}``); ``""`` for a keyword that configuration
+        files do not take.
+    doc : str
+        One line on what it sets.
+    """
+
+    name: str
+    default: object
+    kind: str
+    doc: str
+
+
+class Family:
+    """A physics family: its name, its keywords, and the check that builds it from them.
+
+    Subclasses set :attr:`name` and :attr:`keywords` and implement :meth:`check`, and
+    are listed in :data:`FAMILIES` in the order in which they are built.
+    """
+
+    #: The family's name.
+    name: ClassVar[str] = ""
+    #: The keywords it takes.
+    keywords: ClassVar[tuple[Keyword, ...]] = ()
+
+    @classmethod
+    def check(cls, **values):
+        """The family built from its keywords' values (and what a family needs to know
+        of the system, where it needs it), or ``None`` where they leave hard disks as
+        they are.
+
+        Parameters
+        ----------
+        **values
+            The family's keywords, and what it needs of the system.
+
+        Returns
+        -------
+        Family or None
+
+        Raises
+        ------
+        TypeError, ValueError
+            For a value the family refuses, about the keyword that gave it.
+        """
+        raise NotImplementedError
+
+
+# --------------------------------------------------------------------------- families
+@dataclass(frozen=True, eq=False)
+class Restitution(Family):
+    """Normal restitution between disks and against walls, and the TC model that keeps
+    an inelastic collapse from stopping a run (see :mod:`edmd2d.models`).
+
+    Attributes
+    ----------
+    table : ndarray, shape (S, S)
+        The coefficient of each pair of species (``1 x 1`` for one coefficient).
+    wall : float
+        The coefficient against walls that are not heated.
+    tc : float
+        The TC model's duration.
+    species : ndarray of int32, shape (N,)
+        The species each disk reads its coefficients with (all 0 for one coefficient).
+    """
+
+    name: ClassVar[str] = "restitution"
+    keywords: ClassVar[tuple[Keyword, ...]] = (
+        Keyword("restitution", 1.0, "coefficients",
+                "the coefficient of normal restitution, or a table per pair of species"),
+        Keyword("wall_restitution", 1.0, "coefficient",
+                "the coefficient against box walls and wall segments"),
+        Keyword("tc", None, "duration",
+                "the TC model's duration (default 1e-5 of a diameter's crossing time)"),
+    )
+
+    table: np.ndarray
+    wall: float
+    tc: float
+    species: np.ndarray
+
+    @classmethod
+    def check(cls, *, restitution=1.0, wall_restitution=1.0, tc=None, species, radii,
+              velocities, masses) -> Restitution:
+        """Check the coefficients for disks of ``species`` (validated, int32) and take
+        the default ``tc`` from their radii, velocities and masses.
+
+        Returns
+        -------
+        Restitution
+            Elastic (all coefficients 1) included: :attr:`elastic` tells.
+        """
+        scalar = np.ndim(restitution) == 0
+        with about("restitution"):
+            # (One coefficient for every pair: a 1x1 table that every disk reads as
+            # species 0.)
+            table = _restitution_table(restitution,
+                                              1 if scalar else int(species.max()) + 1)
+        with about("wall_restitution"):
+            wall = _wall_coefficient(wall_restitution)
+        with about("tc"):
+            tc = (_models.default_tc(radii, velocities, np.isfinite(masses)) if tc is None
+                  else _tc_value(tc))
+        return cls(table, wall, tc, np.zeros_like(species) if scalar else species)
+
+    @property
+    def elastic(self) -> bool:
+        """Whether every coefficient is 1."""
+        return bool((self.table == 1.0).all()) and self.wall == 1.0
+
+
+def _restitution_table(value, n_species: int) -> np.ndarray:
+    """Validate ``restitution``: a scalar or an ``(S, S)`` symmetric table (``S`` at
+    least ``n_species``), each entry in ``(0, 1]``; returns the table."""
+    arr = np.asarray(value, dtype=object)
+    if arr.ndim == 0:  # (as_float_array names the argument for any bad scalar)
+        e = float(as_float_array("restitution", value, ()))
+        if not 0.0 < e <= 1.0:
+            raise ValueError(f"restitution must lie in (0, 1], got {e}")
+        return np.full((n_species, n_species), e)
+    table = as_float_array("restitution", value, (None, None)) if arr.ndim == 2 else None
+    if table is None or table.shape[0] != table.shape[1]:
+        raise ValueError(f"restitution must be a scalar or a square (S, S) table, got "
+                         f"shape {arr.shape}")
+    if table.shape[0] < n_species:
+        raise ValueError(f"restitution is a table for {table.shape[0]} species, but the "
+                         f"disks have {n_species} species (0 to {n_species - 1})")
+    table = as_float_array("restitution", table, table.shape)
+    bad = ~((table > 0.0) & (table <= 1.0))
+    if bad.any():
+        a, b = np.argwhere(bad)[0]
+        raise ValueError(f"restitution[{a}, {b}] = {table[a, b]} is outside (0, 1]")
+    if not np.array_equal(table, table.T):
+        a, b = np.argwhere(table != table.T)[0]
+        raise ValueError(
+            f"restitution must be symmetric: restitution[{a}, {b}] = {table[a, b]} but "
+            f"restitution[{b}, {a}] = {table[b, a]}"
+        )
+    return table
+
+
+def _wall_coefficient(value) -> float:
+    """Validate ``wall_restitution``: a scalar in ``(0, 1]``."""
+    e = float(as_float_array("wall_restitution", value, ()))
+    if not 0.0 < e <= 1.0:
+        raise ValueError(f"wall_restitution must lie in (0, 1], got {e}")
+    return e
+
+
+def _tc_value(value) -> float:
+    """Validate ``tc``: a finite scalar ``>= 0``."""
+    tc = float(as_float_array("tc", value, ()))
+    if not tc >= 0.0:
+        raise ValueError(f"tc must be >= 0, got {tc}")
+    return tc
+
+
+@dataclass(frozen=True, eq=False)
+class Gravity(Family):
+    """A uniform acceleration: disks fly on parabolas between events.
+
+    Attributes
+    ----------
+    g : ndarray, shape (2,)
+        The acceleration, not zero.
+    """
+
+    name: ClassVar[str] = "gravity"
+    keywords: ClassVar[tuple[Keyword, ...]] = (
+        Keyword("gravity", None, "vector", "the acceleration (gx, gy) of every disk"),
+    )
+
+    g: np.ndarray
+
+    @classmethod
+    def check(cls, *, gravity=None) -> Gravity | None:
+        """``None`` (or zero: the straight-line engine, the same flights, faster) or a
+        finite 2-vector.
+
+        Returns
+        -------
+        Gravity or None
+        """
+        if gravity is None:
+            return None
+        with about("gravity"):
+            g = np.array(as_float_array("gravity", gravity, (2,)))
+        return cls(g) if (g != 0.0).any() else None
+
+
+_BOX_WALL_ALIASES = {**{name: k for k, name in enumerate(BOX_WALLS)},
+                     **{name: k for k, name in enumerate(BOX_WALL_EQUATIONS)}}
+
+
+@dataclass(frozen=True, eq=False)
+class HeatedWalls(Family):
+    """Walls that send each disk that hits them back with a velocity drawn afresh at
+    their temperature.
+
+    Attributes
+    ----------
+    kt : ndarray, shape (4 + S,)
+        ``kT`` of each box wall (in the order of :data:`edmd2d.geometry.BOX_WALLS`) and
+        each wall segment; 0 where not heated.
+    """
+
+    name: ClassVar[str] = "heated_walls"
+    keywords: ClassVar[tuple[Keyword, ...]] = (
+        Keyword("wall_temperatures", None, "walls",
+                "kT of heated walls: box walls by name, segments by index"),
+    )
+
+    kt: np.ndarray
+
+    @classmethod
+    def check(cls, *, wall_temperatures=None, box: Box, n_segments: int) -> HeatedWalls:
+        """Check ``{wall: kT}`` for a ``box`` with ``n_segments`` wall segments.
+
+        Returns
+        -------
+        HeatedWalls
+            With no wall heated when ``wall_temperatures`` is ``None``.
+        """
+        with about("wall_temperatures"):
+            return cls(_wall_temperatures(wall_temperatures, box, n_segments))
+
+    @property
+    def active(self) -> bool:
+        """Whether a wall is heated."""
+        return bool((self.kt > 0.0).any())
+
+
+def _wall_temperatures(value, box: Box, n_segments: int) -> np.ndarray:
+    if value is None:
+        return np.zeros(4 + n_segments)
+    if not isinstance(value, dict):
+        raise TypeError("wall_temperatures must be a dict {wall: kT} (wall: 'left', "
+                        f"'right', 'bottom', 'top' or a segment index), got {value!r}")
+    kt = np.zeros(4 + n_segments)
+    for key, temperature in value.items():
+        label = f"wall_temperatures[{key!r}]"
+        if isinstance(key, str):
+            if key not in _BOX_WALL_ALIASES:
+                raise ValueError(f"{label}: no box wall is called {key!r}; use one of "
+                                 f"{sorted(_BOX_WALL_ALIASES)}")
+            k = _BOX_WALL_ALIASES[key]
+            if box.periodic[k // 2]:
+                raise ValueError(f"{label}: the {'xy'[k // 2]} axis of the box is "
+                                 "periodic, so it has no wall to heat")
+        elif isinstance(key, (int, np.integer)) and not isinstance(key, bool):
+            if not 0 <= key < n_segments:
+                raise ValueError(f"{label}: there are {n_segments} wall segments "
+                                 f"(indices 0 to {n_segments - 1})")
+            k = 4 + int(key)
+        else:
+            raise TypeError(f"{label}: a wall is a box wall's name or a segment index, "
+                            f"got {type(key).__name__}")
+        t = float(as_float_array(label, temperature, ()))
+        if not t > 0.0:
+            raise ValueError(f"{label} must be a temperature kT > 0, got {t}")
+        if kt[k] > 0.0:
+            raise ValueError(f"{label}: that wall was given a temperature already "
+                             "(under another of its names)")
+        kt[k] = t
+    return kt
+
+
+@dataclass(frozen=True)
+class Thermostat(Family):
+    """An Andersen thermostat: a random disk's velocity redrawn at the events of a
+    Poisson process.
+
+    Attributes
+    ----------
+    temperature : float
+        ``kT`` of the redrawn velocities, > 0.
+    rate : float
+        Redraws per disk per unit time, > 0.
+    """
+
+    name: ClassVar[str] = "thermostat"
+    keywords: ClassVar[tuple[Keyword, ...]] = (
+        Keyword("thermostat", None, "vector",
+                "(kT, rate): redraws of a disk's velocity at kT, rate per disk"),
+    )
+
+    temperature: float
+    rate: float
+
+    @classmethod
+    def check(cls, *, thermostat=None) -> Thermostat | None:
+        """``None`` (also for a zero rate) or ``(kT > 0, rate >= 0)``.
+
+        Returns
+        -------
+        Thermostat or None
+        """
+        if thermostat is None:
+            return None
+        with about("thermostat"):
+            arr = as_float_array("thermostat", thermostat, (2,))
+            kt, rate = float(arr[0]), float(arr[1])
+            if not kt > 0.0:
+                raise ValueError(f"thermostat temperature kT must be > 0, got {kt}")
+            if not rate >= 0.0:
+                raise ValueError(f"thermostat rate must be >= 0, got {rate}")
+        return None if rate == 0.0 else cls(kt, rate)
+
+
+@dataclass(frozen=True)
+class Growth(Family):
+    """Radii that grow linearly in time (compression, :mod:`edmd2d.compress`), for
+    elastic disks in straight flight.
+
+    Attributes
+    ----------
+    rate : float
+        Growth per unit time of each radius, relative to its value at the start, > 0.
+    """
+
+    name: ClassVar[str] = "growth"
+    keywords: ClassVar[tuple[Keyword, ...]] = (
+        Keyword("growth", None, "", "the rate at which every radius grows"),
+    )
+
+    rate: float
+
+    @classmethod
+    def check(cls, *, growth=None) -> Growth | None:
+        """``None`` (fixed radii, also for 0) or a rate > 0.
+
+        Returns
+        -------
+        Growth or None
+        """
+        if growth is None:
+            return None
+        with about("growth"):
+            value = float(as_float_array("growth", growth, ()))
+            if value < 0.0:
+                raise ValueError(f"growth must be >= 0 (a rate per unit time), got {value}")
+        return cls(value) if value > 0.0 else None
+
+    def check_combination(self, model, gravity) -> None:
+        """Refuse growth with a ``model`` (restitution below 1, heated walls, a
+        thermostat) or with ``gravity``: it is for elastic disks in straight flight.
+
+        Raises
+        ------
+        ValueError
+        """
+        with about("growth"):
+            if gravity is not None:
+                raise ValueError("growth does not combine with gravity: growing disks fly "
+                                 "on straight lines")
+            if model is not None:
+                raise ValueError("growth works with elastic disks between reflecting walls: "
+                                 "not with restitution below 1, heated walls or a thermostat")
+
+
+#: The families, in the order :class:`~edmd2d.Simulation` builds them.
+FAMILIES: tuple[type[Family], ...] = (Restitution, Gravity, HeatedWalls, Thermostat, Growth)
+#: Every family's keywords by name.
+KEYWORDS: dict[str, Keyword] = {kw.name: kw for family in FAMILIES for kw in family.keywords}

@@ -63,6 +63,7 @@ def make_gas(
     wall_temperatures=None,
     thermostat=None,
     walls=None,
+    **physics,
 ) -> Simulation:
     """A hard-disk gas at a given packing fraction, ready to run.
 
@@ -118,6 +119,9 @@ def make_gas(
     walls : Wall or sequence of Wall, optional
         Wall segments inside the box (a closed container: ``Wall.polygon(vertices)``;
         several: concatenate the lists).  The disks they cross are left out.
+    **physics
+        The keywords of physics families registered with
+        :func:`edmd2d.physics.register`, as for :class:`~edmd2d.Simulation`.
 
     Returns
     -------
@@ -200,7 +204,7 @@ def make_gas(
     return Simulation(pos, vel, rad, mass, box=box, gravity=gravity, restitution=restitution,
                       wall_restitution=wall_restitution, tc=tc,
                       wall_temperatures=wall_temperatures, thermostat=thermostat, seed=rng,
-                      walls=segs)
+                      walls=segs, **physics)
 
 
 def lattice_packing_limit(n: int, *, radius=0.5, radii=None, aspect=1.0, periodic=True) -> float:

@@ -44,6 +44,7 @@ from pathlib import Path
 import numpy as np
 
 from . import models as _models
+from . import physics as _physics
 from ._atomic import replacing
 from ._operations import Operation, Trigger
 from ._version import __version__
@@ -213,6 +214,10 @@ def _encode(name, value, arrays):
             else:
                 fields[key] = _encode(f"{name}.{key}", item, arrays)
         return {"model": fields}
+    if isinstance(value, dict) and all(isinstance(f, _physics.Family) for f in value.values()):
+        return {"families": {key: {k: _encode(f"{name}.{key}.{k}", v, arrays)
+                                   for k, v in family.state().items()}
+                             for key, family in value.items()}}
     raise TypeError(f"a checkpoint cannot store {name} of type {type(value).__name__}")
 
 
@@ -259,6 +264,16 @@ def _decode(value, arrays):
                 fields[key] = _decode(entry, arrays)
         model.__setstate__(fields)
         return model
+    if kind == "families":
+        out = {}
+        for key, fields in item.items():
+            if key not in _physics.FAMILIES:
+                raise ValueError(f"this checkpoint holds the physics family {key!r}, which "
+                                 "is not registered here (edmd2d.physics.register it before "
+                                 "loading)")
+            out[key] = _physics.FAMILIES[key].from_state(
+                {k: _decode(v, arrays) for k, v in fields.items()})
+        return out
     raise ValueError(f"unknown entry {kind!r}")
 
 

@@ -252,13 +252,23 @@ _KINDS = {
     "duration": _number(0.0),
     "vector": _vector(),
 }
-# [model]: the keywords of every physics family that files take, and the seed.
-_MODEL = {
-    **{kw.name: (_KINDS[kw.kind], OPTIONAL if kw.default is None else kw.default)
-       for kw in physics.KEYWORDS.values() if kw.kind in _KINDS},
-    "seed": (_integer(0), OPTIONAL),
-}
-_MODEL_OWN_CHECK = tuple(kw.name for kw in physics.KEYWORDS.values() if kw.kind == "walls")
+
+
+def _model_schema() -> dict:
+    """[model]: the keywords of every registered physics family that files take, and
+    the seed (read from the registry at each use: a family registered later is in it)."""
+    return {
+        **{kw.name: (_KINDS[kw.kind], OPTIONAL if kw.default is None else kw.default)
+           for kw in physics.KEYWORDS.values() if kw.kind in _KINDS},
+        "seed": (_integer(0), OPTIONAL),
+    }
+
+
+def _model_own_checks() -> tuple:
+    """The [model] keys with a check of their own (heated walls)."""
+    return tuple(kw.name for kw in physics.KEYWORDS.values() if kw.kind == "walls")
+
+
 _WALL = {
     "start": (_vector(), OPTIONAL),
     "end": (_vector(), OPTIONAL),
@@ -274,7 +284,11 @@ _OUTPUT = {
     "checkpoint_every": (_number(0.0, lo_open=True), OPTIONAL),
     "checkpoint_minutes": (_number(0.0, lo_open=True), OPTIONAL),
 }
-_TABLES = {"gas": _GAS, "model": _MODEL, "walls": _WALL, "run": _RUN, "output": _OUTPUT}
+
+
+def _tables() -> dict:
+    return {"gas": _GAS, "model": _model_schema(), "walls": _WALL, "run": _RUN,
+            "output": _OUTPUT}
 
 
 def load(path) -> RunConfig:
@@ -339,14 +353,15 @@ def loads(text: str, path: str = "<config>") -> RunConfig:
     """
     raw, cfg = _parse(text, path)
     data = cfg.data
+    tables = _tables()
     for name in raw:
-        if name not in _TABLES:
-            raise cfg.error((name,), _unknown(name, _TABLES, "table"))
+        if name not in tables:
+            raise cfg.error((name,), _unknown(name, tables, "table"))
     if "gas" not in raw:
         raise cfg.error(("gas",), "the table [gas] is required (n, packing_fraction)")
     if "run" not in raw:
         raise cfg.error(("run",), "the table [run] is required (duration)")
-    for name, schema in _TABLES.items():
+    for name, schema in tables.items():
         if name == "walls":
             continue
         value = raw.get(name, {})
@@ -354,7 +369,7 @@ def loads(text: str, path: str = "<config>") -> RunConfig:
             raise cfg.error((name,), f"expected a table [{name}], got {_shown(value)}")
         data[name] = _check_table(cfg, (name,), value, schema,
                                   skip=("species",) if name == "gas" else
-                                  _MODEL_OWN_CHECK if name == "model" else ())
+                                  _model_own_checks() if name == "model" else ())
     _check_species(cfg, raw["gas"])
     _check_wall_temperatures(cfg, raw.get("model", {}))
     _check_walls(cfg, raw.get("walls", []))
@@ -719,7 +734,7 @@ def task_config(parameters: dict, path: str = "<parameters>") -> RunConfig:
         raise cfg.error(("run", "equilibrate_collisions"),
                         "give either equilibrate (a time) or equilibrate_collisions "
                         "(collisions per disk), not both")
-    cfg.data["model"] = _check_table(cfg, ("model",), {}, _MODEL)
+    cfg.data["model"] = _check_table(cfg, ("model",), {}, _model_schema())
     cfg.data["model"]["wall_temperatures"] = None
     cfg.data["walls"] = []
     return cfg
@@ -734,8 +749,15 @@ _ARGUMENT_KEYS = {
     "periodic": ("gas", "periodic"), "species": ("gas", "species"),
     "walls": ("walls",), "positions": ("walls",), "velocities": ("walls",),
     "seed": ("model", "seed"),
-    **{kw.name: ("model", kw.name) for kw in physics.KEYWORDS.values() if kw.kind},
 }
+
+
+def _key_of_argument(exc: BaseException) -> tuple:
+    """The configuration key of the argument a library error is about, or ``()``."""
+    name = argument_of(exc)
+    if name in physics.KEYWORDS and physics.KEYWORDS[name].kind:
+        return ("model", name)
+    return _ARGUMENT_KEYS.get(name, ())
 
 
 def build(cfg: RunConfig, seed: int):
@@ -814,11 +836,14 @@ def build(cfg: RunConfig, seed: int):
                          else np.array(model["restitution"])),
             wall_restitution=model["wall_restitution"], tc=model["tc"],
             gravity=model["gravity"], wall_temperatures=wall_kt,
-            thermostat=model["thermostat"], seed=rng)
+            thermostat=model["thermostat"], seed=rng,
+            **{name: model[name] for name, kw in physics.KEYWORDS.items()
+               if kw.kind in _KINDS and not physics.owner(name).built_in
+               and model.get(name) is not None})
     except (TypeError, ValueError) as exc:
         if isinstance(exc, ConfigError):
             raise
-        raise cfg.error(_ARGUMENT_KEYS.get(argument_of(exc), ()), str(exc)) from None
+        raise cfg.error(_key_of_argument(exc), str(exc)) from None
     return sim, int((~keep).sum())
 
 

@@ -4,9 +4,14 @@ A family is a small class that validates its keywords once and holds the result:
 :class:`Restitution` (with the TC model), :class:`Gravity`, :class:`HeatedWalls`,
 :class:`Thermostat` and :class:`Growth`.  Each declares the keywords it takes
 (:class:`Keyword`: name, default, the kind of value a configuration file gives, one line
-of description) and is listed in :data:`FAMILIES`.  :class:`~edmd2d.Simulation` takes
-these keywords and builds each family from them; the ``[model]`` table of a run
-configuration (:mod:`edmd2d.config`) is derived from the same declarations.
+of description) and is registered (:func:`register`, :data:`FAMILIES`).
+:class:`~edmd2d.Simulation` takes these keywords and builds each family from them; the
+``[model]`` table of a run configuration (:mod:`edmd2d.config`) is derived from the
+same declarations.  A family registered later (see :class:`Family`) is kept by the
+simulation in :attr:`Simulation.families <edmd2d.Simulation.families>`, stored in its
+checkpoints and logged in its GSD frames, with no other file changed; the families
+above came before the registry, and :class:`~edmd2d.Simulation` keeps them in
+attributes of its own (``built_in``).
 
 An error about a keyword's value carries that keyword, so that the configuration
 loader points at the right key of a file without reading the message.
@@ -14,7 +19,7 @@ loader points at the right key of a file without reading the message.
 Examples
 --------
 >>> from edmd2d import physics
->>> [family.name for family in physics.FAMILIES]
+>>> list(physics.FAMILIES)
 ['restitution', 'gravity', 'heated_walls', 'thermostat', 'growth']
 >>> physics.Thermostat.check(thermostat=(1.0, 0.5))
 Thermostat(temperature=1.0, rate=0.5)
@@ -26,6 +31,8 @@ True
 
 from __future__ import annotations
 
+import dataclasses
+import difflib
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -35,8 +42,9 @@ from . import models as _models
 from ._validate import about, as_float_array
 from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, Box
 
-__all__ = ["Keyword", "Family", "FAMILIES", "KEYWORDS", "Restitution", "Gravity",
-           "HeatedWalls", "Thermostat", "Growth"]
+__all__ = ["Keyword", "System", "Family", "FAMILIES", "KEYWORDS", "register", "unregister",
+           "owner",
+           "Restitution", "Gravity", "HeatedWalls", "Thermostat", "Growth"]
 
 
 @dataclass(frozen=True)
@@ -66,28 +74,66 @@ class Keyword:
     doc: str
 
 
+@dataclass(frozen=True, eq=False)
+class System:
+    """What a family's :meth:`Family.check` may need to know of the system it joins.
+
+    Attributes
+    ----------
+    box : Box
+    n_segments : int
+        The number of wall segments.
+    radii, masses : ndarray, shape (N,)
+    velocities : ndarray, shape (N, 2)
+    species : ndarray of int32, shape (N,)
+    time : float
+    """
+
+    box: Box
+    n_segments: int
+    radii: np.ndarray
+    velocities: np.ndarray
+    masses: np.ndarray
+    species: np.ndarray
+    time: float
+
+
 class Family:
     """A physics family: its name, its keywords, and the check that builds it from them.
 
-    Subclasses set :attr:`name` and :attr:`keywords` and implement :meth:`check`, and
-    are listed in :data:`FAMILIES` in the order in which they are built.
+    A subclass sets :attr:`name` and :attr:`keywords` and implements :meth:`check`;
+    :func:`register` adds it to :data:`FAMILIES`.  A registered family's keywords are
+    then keywords of :class:`~edmd2d.Simulation` and keys of a configuration's
+    ``[model]`` table; the simulation keeps the family (:attr:`Simulation.families
+    <edmd2d.Simulation.families>`), its checkpoints store it (:meth:`state`,
+    :meth:`from_state`) and its GSD frames log it (:meth:`log`,
+    :meth:`keywords_from_log`).  The defaults of those four serve a family that is a
+    dataclass of numbers and arrays.
     """
 
     #: The family's name.
     name: ClassVar[str] = ""
     #: The keywords it takes.
     keywords: ClassVar[tuple[Keyword, ...]] = ()
+    #: Whether :class:`~edmd2d.Simulation` takes the family's keywords by name and keeps
+    #: it in attributes of its own (the families that came before the registry);
+    #: otherwise it keeps the family in :attr:`Simulation.families
+    #: <edmd2d.Simulation.families>`.
+    built_in: ClassVar[bool] = False
 
     @classmethod
-    def check(cls, **values):
+    def check(cls, system: System | None = None, **values):
         """The family built from its keywords' values (and what a family needs to know
         of the system, where it needs it), or ``None`` where they leave hard disks as
         they are.
 
         Parameters
         ----------
+        system : System, optional
+            What the family may need to know of the system (a family that needs
+            nothing of it is checked without).
         **values
-            The family's keywords, and what it needs of the system.
+            The family's keywords that were given.
 
         Returns
         -------
@@ -99,6 +145,57 @@ class Family:
             For a value the family refuses, about the keyword that gave it.
         """
         raise NotImplementedError
+
+    def state(self) -> dict:
+        """What a checkpoint stores of the family: its fields, numbers and arrays.
+
+        Returns
+        -------
+        dict
+        """
+        return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
+
+    @classmethod
+    def from_state(cls, state: dict) -> Family:
+        """The family a checkpoint stored (:meth:`state`).
+
+        Parameters
+        ----------
+        state : dict
+
+        Returns
+        -------
+        Family
+        """
+        return cls(**state)
+
+    def log(self) -> dict:
+        """What a GSD frame logs of the family (under ``edmd2d/<name>/<key>``): its
+        keywords' values as float64 arrays, by default each keyword's field.
+
+        Returns
+        -------
+        dict of str to ndarray
+        """
+        return {kw.name: np.asarray(getattr(self, kw.name), np.float64)
+                for kw in self.keywords}
+
+    @classmethod
+    def keywords_from_log(cls, log: dict) -> dict:
+        """The keywords that rebuild the family from what a GSD frame logged
+        (:meth:`log`).
+
+        Parameters
+        ----------
+        log : dict of str to ndarray
+            The family's entries, by key.
+
+        Returns
+        -------
+        dict
+        """
+        return {key: (float(value[0]) if value.size == 1 else value)
+                for key, value in log.items()}
 
 
 # --------------------------------------------------------------------------- families
@@ -120,6 +217,7 @@ class Restitution(Family):
     """
 
     name: ClassVar[str] = "restitution"
+    built_in: ClassVar[bool] = True
     keywords: ClassVar[tuple[Keyword, ...]] = (
         Keyword("restitution", 1.0, "coefficients",
                 "the coefficient of normal restitution, or a table per pair of species"),
@@ -135,9 +233,9 @@ class Restitution(Family):
     species: np.ndarray
 
     @classmethod
-    def check(cls, *, restitution=1.0, wall_restitution=1.0, tc=None, species, radii,
-              velocities, masses) -> Restitution:
-        """Check the coefficients for disks of ``species`` (validated, int32) and take
+    def check(cls, system: System | None = None, *, restitution=1.0, wall_restitution=1.0,
+              tc=None) -> Restitution:
+        """Check the coefficients for the species of the ``system``'s disks and take
         the default ``tc`` from their radii, velocities and masses.
 
         Returns
@@ -145,6 +243,7 @@ class Restitution(Family):
         Restitution
             Elastic (all coefficients 1) included: :attr:`elastic` tells.
         """
+        species = system.species
         scalar = np.ndim(restitution) == 0
         with about("restitution"):
             # (One coefficient for every pair: a 1x1 table that every disk reads as
@@ -154,7 +253,8 @@ class Restitution(Family):
         with about("wall_restitution"):
             wall = _wall_coefficient(wall_restitution)
         with about("tc"):
-            tc = (_models.default_tc(radii, velocities, np.isfinite(masses)) if tc is None
+            tc = (_models.default_tc(system.radii, system.velocities,
+                                     np.isfinite(system.masses)) if tc is None
                   else _tc_value(tc))
         return cls(table, wall, tc, np.zeros_like(species) if scalar else species)
 
@@ -221,6 +321,7 @@ class Gravity(Family):
     """
 
     name: ClassVar[str] = "gravity"
+    built_in: ClassVar[bool] = True
     keywords: ClassVar[tuple[Keyword, ...]] = (
         Keyword("gravity", None, "vector", "the acceleration (gx, gy) of every disk"),
     )
@@ -228,7 +329,7 @@ class Gravity(Family):
     g: np.ndarray
 
     @classmethod
-    def check(cls, *, gravity=None) -> Gravity | None:
+    def check(cls, system: System | None = None, *, gravity=None) -> Gravity | None:
         """``None`` (or zero: the straight-line engine, the same flights, faster) or a
         finite 2-vector.
 
@@ -260,6 +361,7 @@ class HeatedWalls(Family):
     """
 
     name: ClassVar[str] = "heated_walls"
+    built_in: ClassVar[bool] = True
     keywords: ClassVar[tuple[Keyword, ...]] = (
         Keyword("wall_temperatures", None, "walls",
                 "kT of heated walls: box walls by name, segments by index"),
@@ -268,8 +370,8 @@ class HeatedWalls(Family):
     kt: np.ndarray
 
     @classmethod
-    def check(cls, *, wall_temperatures=None, box: Box, n_segments: int) -> HeatedWalls:
-        """Check ``{wall: kT}`` for a ``box`` with ``n_segments`` wall segments.
+    def check(cls, system: System | None = None, *, wall_temperatures=None) -> HeatedWalls:
+        """Check ``{wall: kT}`` for the ``system``'s box and wall segments.
 
         Returns
         -------
@@ -277,7 +379,7 @@ class HeatedWalls(Family):
             With no wall heated when ``wall_temperatures`` is ``None``.
         """
         with about("wall_temperatures"):
-            return cls(_wall_temperatures(wall_temperatures, box, n_segments))
+            return cls(_wall_temperatures(wall_temperatures, system.box, system.n_segments))
 
     @property
     def active(self) -> bool:
@@ -334,6 +436,7 @@ class Thermostat(Family):
     """
 
     name: ClassVar[str] = "thermostat"
+    built_in: ClassVar[bool] = True
     keywords: ClassVar[tuple[Keyword, ...]] = (
         Keyword("thermostat", None, "vector",
                 "(kT, rate): redraws of a disk's velocity at kT, rate per disk"),
@@ -343,7 +446,7 @@ class Thermostat(Family):
     rate: float
 
     @classmethod
-    def check(cls, *, thermostat=None) -> Thermostat | None:
+    def check(cls, system: System | None = None, *, thermostat=None) -> Thermostat | None:
         """``None`` (also for a zero rate) or ``(kT > 0, rate >= 0)``.
 
         Returns
@@ -374,6 +477,7 @@ class Growth(Family):
     """
 
     name: ClassVar[str] = "growth"
+    built_in: ClassVar[bool] = True
     keywords: ClassVar[tuple[Keyword, ...]] = (
         Keyword("growth", None, "", "the rate at which every radius grows"),
     )
@@ -381,7 +485,7 @@ class Growth(Family):
     rate: float
 
     @classmethod
-    def check(cls, *, growth=None) -> Growth | None:
+    def check(cls, system: System | None = None, *, growth=None) -> Growth | None:
         """``None`` (fixed radii, also for 0) or a rate > 0.
 
         Returns
@@ -413,7 +517,132 @@ class Growth(Family):
                                  "not with restitution below 1, heated walls or a thermostat")
 
 
-#: The families, in the order :class:`~edmd2d.Simulation` builds them.
-FAMILIES: tuple[type[Family], ...] = (Restitution, Gravity, HeatedWalls, Thermostat, Growth)
-#: Every family's keywords by name.
-KEYWORDS: dict[str, Keyword] = {kw.name: kw for family in FAMILIES for kw in family.keywords}
+#: The registered families by name, in the order :class:`~edmd2d.Simulation` builds
+#: them (see :func:`register`).
+FAMILIES: dict[str, type[Family]] = {}
+#: Every registered family's keywords by name.
+KEYWORDS: dict[str, Keyword] = {}
+#: The family each keyword belongs to.
+_OWNER: dict[str, type[Family]] = {}
+# (Keywords of Simulation that are no family's: a family cannot take them.)
+_RESERVED = ("positions", "velocities", "radii", "masses", "box", "walls", "time",
+             "cell_size", "species", "seed")
+
+
+def register(family: type[Family]) -> type[Family]:
+    """Add ``family`` to the registry (usable as a class decorator).
+
+    Its keywords become keywords of :class:`~edmd2d.Simulation` and keys of a
+    configuration's ``[model]`` table, and the simulation keeps, checkpoints and logs
+    it (see :class:`Family`).
+
+    Parameters
+    ----------
+    family : type
+        A subclass of :class:`Family` with a new name and keywords no other family takes.
+
+    Returns
+    -------
+    type
+        ``family``.
+
+    Raises
+    ------
+    TypeError
+        If ``family`` is not a subclass of :class:`Family`.
+    ValueError
+        If its name or one of its keywords is taken.
+    """
+    if not (isinstance(family, type) and issubclass(family, Family)):
+        raise TypeError(f"register() needs a subclass of edmd2d.physics.Family, got "
+                        f"{family!r}")
+    if not family.name or family.name in FAMILIES:
+        raise ValueError(f"a physics family needs a name of its own, got {family.name!r}")
+    for kw in family.keywords:
+        if kw.name in KEYWORDS or kw.name in _RESERVED:
+            raise ValueError(f"the keyword {kw.name!r} of the family {family.name!r} is "
+                             "taken")
+    FAMILIES[family.name] = family
+    for kw in family.keywords:
+        KEYWORDS[kw.name] = kw
+        _OWNER[kw.name] = family
+    return family
+
+
+def owner(keyword: str) -> type[Family]:
+    """The registered family that takes ``keyword``.
+
+    Parameters
+    ----------
+    keyword : str
+
+    Returns
+    -------
+    type
+
+    Raises
+    ------
+    KeyError
+        If no registered family takes it.
+    """
+    return _OWNER[keyword]
+
+
+def unregister(name: str) -> None:
+    """Remove the family ``name`` from the registry (a family registered for a while,
+    as in a test).
+
+    Parameters
+    ----------
+    name : str
+
+    Raises
+    ------
+    KeyError
+        If no family has that name.
+    """
+    family = FAMILIES.pop(name)
+    for kw in family.keywords:
+        del KEYWORDS[kw.name], _OWNER[kw.name]
+
+
+for _family in (Restitution, Gravity, HeatedWalls, Thermostat, Growth):
+    register(_family)
+
+
+def check_registered(system: System, values: dict) -> dict:
+    """The registered families that are not built in, built from the keywords in
+    ``values`` (a family none of whose keywords is given is left out, as is one whose
+    check gives ``None``).
+
+    Parameters
+    ----------
+    system : System
+    values : dict
+        Keywords given to :class:`~edmd2d.Simulation` beyond its own.
+
+    Returns
+    -------
+    dict of str to Family
+
+    Raises
+    ------
+    TypeError
+        For a keyword that no registered family takes (naming the closest one).
+    """
+    for key in values:
+        if key not in _OWNER or _OWNER[key].built_in:
+            known = [k for k, f in _OWNER.items() if not f.built_in]
+            close = difflib.get_close_matches(key, list(_OWNER) + list(_RESERVED), n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else (
+                f"; the registered families take {known}" if known else "")
+            raise TypeError(f"Simulation() got an unexpected keyword argument {key!r}{hint}")
+    out = {}
+    for name, family in FAMILIES.items():
+        given = {kw.name: values[kw.name] for kw in family.keywords if kw.name in values}
+        if family.built_in or not given:
+            continue
+        built = family.check(system, **given)
+        if built is not None:
+            out[name] = built
+    return out

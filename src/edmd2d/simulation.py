@@ -183,6 +183,9 @@ class Simulation(SimulationBase):
         energy (the work of the compression).  For elastic disks in free flight
         (no ``gravity``, restitution, heated walls or thermostat).  See
         :meth:`set_growth`.
+    **physics
+        The keywords of the physics families registered with
+        :func:`edmd2d.physics.register` (kept in :attr:`families`).
 
     Raises
     ------
@@ -234,6 +237,7 @@ class Simulation(SimulationBase):
         thermostat=None,
         seed=None,
         growth=None,
+        **physics,
     ) -> None:
         if box is None:
             raise TypeError("box is required: pass box=edmd2d.Box(width, height, periodic=...)")
@@ -260,9 +264,12 @@ class Simulation(SimulationBase):
         t0 = as_float_array("time", time, ())
         self._box = box
         self._walls = tuple(wall_list)
-        g = _physics.Gravity.check(gravity=gravity)
+        with about("species"):
+            spec = _models.as_species(species, n)
+        system = _physics.System(box, len(wall_list), rad, vel, mass, spec, float(t0))
+        g = _physics.Gravity.check(system, gravity=gravity)
         self._gravity = None if g is None else g.g
-        growth = _physics.Growth.check(growth=growth)
+        growth = _physics.Growth.check(system, growth=growth)
         with about("positions"):
             pos = self._check_in_box(pos, rad)
         with about("walls"):
@@ -283,14 +290,15 @@ class Simulation(SimulationBase):
                 raise ValueError(
                     f"cell_size must be at least the largest diameter {dmax}, got {cell_size}"
                 )
-        user_species, model = _build_model(
-            species, rad, vel, mass, float(t0), seed,
-            restitution=restitution, wall_restitution=wall_restitution, tc=tc,
-            wall_temperatures=_physics.HeatedWalls.check(
-                wall_temperatures=wall_temperatures, box=box, n_segments=len(wall_list)),
-            thermostat=_physics.Thermostat.check(thermostat=thermostat))
+        model = _build_model(
+            system, seed,
+            _physics.Restitution.check(system, restitution=restitution,
+                                       wall_restitution=wall_restitution, tc=tc),
+            _physics.HeatedWalls.check(system, wall_temperatures=wall_temperatures),
+            _physics.Thermostat.check(system, thermostat=thermostat))
         if growth is not None:
             growth.check_combination(model, self._gravity)
+        self._families = _physics.check_registered(system, physics)
 
         # Per-disk state and bookkeeping, one 64-byte row each in S and E (see
         # _engine/layout.py for the columns).
@@ -327,7 +335,7 @@ class Simulation(SimulationBase):
             self._check_overlaps(pos, rad)
         _layout.support_view(state)[:] = self._resting(pos, vel, rad, mass, model)
 
-        self._species = None if species is None else user_species
+        self._species = None if species is None else spec
         self._model = model
         self._counts = np.zeros(_layout.N_COUNTS, np.int64)
         self._acc = np.zeros(_layout.N_ACC, np.float64)
@@ -660,6 +668,7 @@ class Simulation(SimulationBase):
         state.setdefault("_grid_dmax", 2.0 * float(state["_S"][:, _layout.R].max()))
         state.setdefault("_log_j", np.zeros(len(state.get("_log_t", ()))))
         state.setdefault("_listener", None)
+        state.setdefault("_families", {})
         acc = state["_acc"]
         if len(acc) < _layout.N_ACC:
             state["_acc"] = np.concatenate([acc, np.zeros(_layout.N_ACC - len(acc))])
@@ -1319,6 +1328,17 @@ class Simulation(SimulationBase):
         return weighted_sum(self._mass[movable], self._velocities()[movable])
 
     @property
+    def families(self) -> dict:
+        """The physics families registered with :func:`edmd2d.physics.register` that
+        this simulation has, by name (a copy of the mapping; the families are frozen).
+
+        Returns
+        -------
+        dict of str to edmd2d.physics.Family
+        """
+        return dict(self._families)
+
+    @property
     def gravity(self) -> np.ndarray:
         """The uniform acceleration of the movable disks, shape (2,), a copy (zero
         without gravity)."""
@@ -1568,22 +1588,16 @@ class Simulation(SimulationBase):
                 for batch in self._recorded for e in batch]
 
 
-def _build_model(species, rad, vel, mass, time, seed, *, restitution, wall_restitution,
-                 tc, wall_temperatures, thermostat):
-    """Check the physics keywords; ``(species, model)``: the species in user order
-    (int32) and the :class:`~edmd2d.models.Model`, or ``None`` for elastic disks
-    between reflecting walls without a thermostat (the engine's default path)."""
-    with about("species"):
-        spec = _models.as_species(species, len(rad))
-    contact = _physics.Restitution.check(
-        restitution=restitution, wall_restitution=wall_restitution, tc=tc, species=spec,
-        radii=rad, velocities=vel, masses=mass)
-    heated = wall_temperatures.active
-    if contact.elastic and not heated and thermostat is None:
-        return spec, None
+def _build_model(system, seed, contact, heated, thermostat):
+    """The :class:`~edmd2d.models.Model` of the checked families, or ``None`` for
+    elastic disks between reflecting walls without a thermostat (the engine's default
+    path)."""
+    if contact.elastic and not heated.active and thermostat is None:
+        return None
     rng = None
-    if heated or thermostat is not None:
+    if heated.active or thermostat is not None:
         rng = as_generator("seed", seed)
-    return spec, _models.Model(
-        contact.table, contact.wall, contact.tc, contact.species, wall_temperatures.kt,
-        None if thermostat is None else (thermostat.temperature, thermostat.rate), rng, time)
+    return _models.Model(
+        contact.table, contact.wall, contact.tc, contact.species, heated.kt,
+        None if thermostat is None else (thermostat.temperature, thermostat.rate), rng,
+        system.time)

@@ -19,7 +19,9 @@ What a frame holds (HOOMD conventions):
   ``time``; the box's ``W, H`` in float64 (``box``); the ``periodic`` flags of the two
   axes (1 periodic, 0 walled); the wall segments ``walls`` as rows
   ``(x0, y0, x1, y1)`` in the frame's centred coordinates;
-  ``gravity``; ``immovable`` (1 for disks of infinite mass); the counts
+  ``gravity``; ``<family>/<keyword>`` for each physics family registered with
+  :func:`edmd2d.physics.register` that the simulation has (which :func:`read` passes
+  back); ``immovable`` (1 for disks of infinite mass); the counts
   ``collisions``, ``wall_collisions`` and ``events``; the kinetic and total
   ``energy``; and, over the window from the writer's first frame to this one, the
   ``pressure`` (virial: ``P A = N kT + sum J |r_ij| / 2t``, with ``kT`` averaged over
@@ -43,6 +45,7 @@ import string
 import numpy as np
 
 from .. import measurements as _measurements
+from .. import physics as _physics
 from .._atomic import umask_mode
 from .._operations import Operation, Trigger
 from ..geometry import Box, Wall
@@ -188,6 +191,9 @@ def _frame(sim, writer: Writer):
         "edmd2d/pressure": np.array([pressure]),
         "edmd2d/wall_pressure": np.broadcast_to(wall_pressure, (4,)).astype(np.float64),
     }
+    for name, family in sim.families.items():
+        for key, value in family.log().items():
+            frame.log[f"edmd2d/{name}/{key}"] = np.asarray(value, np.float64)
     return frame
 
 
@@ -290,6 +296,13 @@ def read(path, frame: int = -1, *, radius_scale: float = 1.0, **physics):
                        else np.asarray(f.particles.typeid, np.int64))
     if "edmd2d/gravity" in log:
         physics.setdefault("gravity", log["edmd2d/gravity"])
+    for name, family in _physics.FAMILIES.items():
+        prefix = f"edmd2d/{name}/"
+        logged = {key[len(prefix):]: value for key, value in log.items()
+                  if key.startswith(prefix)}
+        if logged:
+            for key, value in family.keywords_from_log(logged).items():
+                physics.setdefault(key, value)
     walls = [Wall(tuple(row[:2] + centre), tuple(row[2:] + centre))
              for row in log.get("edmd2d/walls", np.zeros((0, 4))).reshape(-1, 4)]
     time = float(log["edmd2d/time"][0]) if "edmd2d/time" in log else 0.0

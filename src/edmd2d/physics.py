@@ -238,6 +238,14 @@ class Restitution(Family):
         """Check the coefficients for the species of the ``system``'s disks and take
         the default ``tc`` from their radii, velocities and masses.
 
+        Parameters
+        ----------
+        system : System
+            The disks' species, radii, velocities and masses.
+        restitution : float or array_like, shape (S, S), default 1.0
+        wall_restitution : float, default 1.0
+        tc : float, optional
+
         Returns
         -------
         Restitution
@@ -333,6 +341,12 @@ class Gravity(Family):
         """``None`` (or zero: the straight-line engine, the same flights, faster) or a
         finite 2-vector.
 
+        Parameters
+        ----------
+        system : System, optional
+            Not needed.
+        gravity : array_like, shape (2,), optional
+
         Returns
         -------
         Gravity or None
@@ -372,6 +386,12 @@ class HeatedWalls(Family):
     @classmethod
     def check(cls, system: System | None = None, *, wall_temperatures=None) -> HeatedWalls:
         """Check ``{wall: kT}`` for the ``system``'s box and wall segments.
+
+        Parameters
+        ----------
+        system : System
+            The box and the number of wall segments.
+        wall_temperatures : dict, optional
 
         Returns
         -------
@@ -449,6 +469,12 @@ class Thermostat(Family):
     def check(cls, system: System | None = None, *, thermostat=None) -> Thermostat | None:
         """``None`` (also for a zero rate) or ``(kT > 0, rate >= 0)``.
 
+        Parameters
+        ----------
+        system : System, optional
+            Not needed.
+        thermostat : (float, float), optional
+
         Returns
         -------
         Thermostat or None
@@ -488,6 +514,12 @@ class Growth(Family):
     def check(cls, system: System | None = None, *, growth=None) -> Growth | None:
         """``None`` (fixed radii, also for 0) or a rate > 0.
 
+        Parameters
+        ----------
+        system : System, optional
+            Not needed.
+        growth : float, optional
+
         Returns
         -------
         Growth or None
@@ -503,6 +535,11 @@ class Growth(Family):
     def check_combination(self, model, gravity) -> None:
         """Refuse growth with a ``model`` (restitution below 1, heated walls, a
         thermostat) or with ``gravity``: it is for elastic disks in straight flight.
+
+        Parameters
+        ----------
+        model : edmd2d.models.Model or None
+        gravity : ndarray or None
 
         Raises
         ------

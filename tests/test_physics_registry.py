@@ -14,7 +14,7 @@ import pytest
 
 import edmd2d as ed
 from edmd2d import checkpoint, config, physics
-from edmd2d._validate import about, as_positive_float
+from edmd2d._validate import as_positive_float
 
 
 @dataclass(frozen=True)
@@ -32,7 +32,7 @@ class Label(physics.Family):
     def check(cls, system=None, *, label_level=None):
         if label_level is None:
             return None
-        with about("label_level"):
+        with physics.about("label_level"):
             return cls(as_positive_float("label_level", label_level, allow_zero=True))
 
 

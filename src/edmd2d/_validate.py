@@ -24,11 +24,32 @@ _MAX_COUNT = int(np.iinfo(np.int64).max)
 
 @contextlib.contextmanager
 def about(name: str):
-    """Errors (``TypeError``, ``ValueError``) raised inside are about the argument
-    ``name``: :func:`argument_of` tells it, so that a caller (the configuration loader)
-    can point at its own key for that argument without reading the message.  An outer
-    ``about`` has the last word: a check of ``wall_temperatures`` is about that
-    keyword, whatever its inner checks called the value."""
+    """Mark the errors (``TypeError``, ``ValueError``) raised inside as being about the
+    argument ``name``, so that a caller (the configuration loader) can point at its own
+    key for that argument without reading the message.
+
+    An outer ``about`` has the last word: a check of ``wall_temperatures`` is about
+    that keyword, whatever its inner checks called the value.
+
+    Parameters
+    ----------
+    name : str
+        The argument (or keyword).
+
+    Yields
+    ------
+    None
+
+    Examples
+    --------
+    >>> from edmd2d.physics import about
+    >>> try:
+    ...     with about("label_level"):
+    ...         raise ValueError("label_level must be >= 0, got -1")
+    ... except ValueError as exc:
+    ...     print(exc.edmd2d_argument)
+    label_level
+    """
     try:
         yield
     except (TypeError, ValueError) as exc:

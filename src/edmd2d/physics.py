@@ -13,8 +13,9 @@ checkpoints and logged in its GSD frames, with no other file changed; the famili
 above came before the registry, and :class:`~edmd2d.Simulation` keeps them in
 attributes of its own (``built_in``).
 
-An error about a keyword's value carries that keyword, so that the configuration
-loader points at the right key of a file without reading the message.
+An error about a keyword's value carries that keyword (a family's check raises it
+inside ``with about(keyword):``, :func:`about`), so that the configuration loader points
+at the right key of a file without reading the message.
 
 Examples
 --------
@@ -43,7 +44,7 @@ from ._validate import about, as_float_array
 from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, Box
 
 __all__ = ["Keyword", "System", "Family", "FAMILIES", "KEYWORDS", "register", "unregister",
-           "owner",
+           "owner", "about",
            "Restitution", "Gravity", "HeatedWalls", "Thermostat", "Growth"]
 
 

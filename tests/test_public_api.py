@@ -17,10 +17,14 @@ SNAPSHOT = Path(__file__).with_name("public_api.txt")
 
 
 def _signature(obj) -> str:
+    """The parameters, their kinds and defaults; annotations are left out (how Python
+    shows them differs between versions, and they are not what a caller passes)."""
     try:
-        return str(inspect.signature(obj))
+        sig = inspect.signature(obj)
     except (TypeError, ValueError):
         return "(...)"
+    plain = [p.replace(annotation=inspect.Parameter.empty) for p in sig.parameters.values()]
+    return str(sig.replace(parameters=plain, return_annotation=inspect.Signature.empty))
 
 
 def surface() -> list[str]:

@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._sums import dot
-from ._validate import indices_where
+from ._validate import as_float_array, indices_where
 
 # Relative tolerance for "touching is fine, overlapping is not" in the input checks:
 # lattices built by arithmetic touch to within rounding, and the engine copes with a
@@ -54,6 +54,31 @@ def check_room(box, vel: np.ndarray, rad: np.ndarray) -> None:
                 f"walls on the {name} axis (diameter >= {length}) and cannot move "
                 f"along {name}; their {name}-velocity must be 0"
             )
+
+
+def check_periodic_room(box, rad: np.ndarray) -> None:
+    """A periodic axis is at least one largest diameter long."""
+    dmax = 2.0 * float(rad.max())
+    for axis, length in (("width", box.width), ("height", box.height)):
+        periodic = box.periodic[0 if axis == "width" else 1]
+        if periodic and length < dmax:
+            raise ValueError(
+                f"box {axis} {length} is smaller than the largest disk diameter {dmax}: "
+                "on a periodic axis a disk would overlap its own image"
+            )
+
+
+def as_cell_size(cell_size, rad: np.ndarray) -> float | None:
+    """``cell_size`` (``None``: the default) as a float, at least the largest diameter."""
+    if cell_size is None:
+        return None
+    dmax = 2.0 * float(rad.max())
+    cell_size = float(as_float_array("cell_size", cell_size, ()))
+    if not cell_size >= dmax:
+        raise ValueError(
+            f"cell_size must be at least the largest diameter {dmax}, got {cell_size}"
+        )
+    return cell_size
 
 
 def check_walls_in_box(box, walls) -> None:

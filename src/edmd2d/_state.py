@@ -25,10 +25,10 @@ from ._engine import layout as _layout
 from ._engine import loop as _loop
 from ._engine import overlap as _overlap
 from ._engine import queue as _queue
-from ._validate import about, indices_where
+from ._validate import about, as_generator, indices_where
 from .geometry import BOX_WALL_EQUATIONS, MAX_LENGTH
 
-__all__ = ["EngineState", "EVENT_KINDS", "EVENT_DTYPE", "VERSION"]
+__all__ = ["EngineState", "build_model", "EVENT_KINDS", "EVENT_DTYPE", "VERSION"]
 
 #: The version of the state's layout: pickles and checkpoints of another are refused.
 VERSION = 2
@@ -65,6 +65,20 @@ EVENT_KINDS = tuple(_KIND_NAMES[k] for k in _KIND_CODES)
 EVENT_DTYPE = np.dtype([("time", "f8"), ("kind", "U10"), ("disk", "i8"),
                         ("partner", "i8"), ("impulse", "f8")])
 
+
+def build_model(system, seed, contact, heated, thermostat):
+    """The :class:`~edmd2d.models.Model` of the checked families, or ``None`` for
+    elastic disks between reflecting walls without a thermostat (the engine's default
+    path)."""
+    if contact.elastic and not heated.active and thermostat is None:
+        return None
+    rng = None
+    if heated.active or thermostat is not None:
+        rng = as_generator("seed", seed)
+    return _models.Model(
+        contact.table, contact.wall, contact.tc, contact.species, heated.kt,
+        None if thermostat is None else (thermostat.temperature, thermostat.rate), rng,
+        system.time)
 
 class EngineState:
     """Everything a simulation holds between two calls of the event loop, in the
@@ -277,7 +291,7 @@ class EngineState:
         """Under growth, the time at which the largest diameter reaches ``diameter``."""
         growth = self.growth_bundle()
         d0 = 2.0 * float(self.S[:, _layout.R].max())
-        return growth.t0 + (diameter / d0 - 1.0) / growth.rate  # (rate > 0: _as_growth)
+        return growth.t0 + (diameter / d0 - 1.0) / growth.rate  # (rate > 0: physics.Growth)
 
     def regrid(self) -> None:
         """Bring every disk to the current time, rebuild the grid (under growth: for

@@ -218,6 +218,7 @@ class Model:
         return new
 
     def __setstate__(self, state: dict) -> None:
+        """For pickles and checkpoints: the fields as :func:`vars` gave them."""
         vars(self).update(state)
 
     def __repr__(self) -> str:

@@ -17,7 +17,7 @@ from . import physics as _physics
 from ._engine import layout as _layout
 from ._facade import SimulationBase
 from ._sums import dot, weighted_sum
-from ._validate import about, as_count, as_float_array, as_generator, indices_where, per_disk
+from ._validate import about, as_count, as_float_array, indices_where, per_disk
 from .geometry import BOX_WALLS, Box, Wall, as_walls
 
 __all__ = ["Simulation", "Counts"]
@@ -233,22 +233,9 @@ class Simulation(SimulationBase):
         with about("walls"):
             _checks.check_walls_in_box(box, wall_list)
         _checks.check_room(box, vel, rad)
-
-        dmax = 2.0 * float(rad.max())
-        for axis, length in (("width", box.width), ("height", box.height)):
-            periodic = box.periodic[0 if axis == "width" else 1]
-            if periodic and length < dmax:
-                raise ValueError(
-                    f"box {axis} {length} is smaller than the largest disk diameter {dmax}: "
-                    "on a periodic axis a disk would overlap its own image"
-                )
-        if cell_size is not None:
-            cell_size = float(as_float_array("cell_size", cell_size, ()))
-            if not cell_size >= dmax:
-                raise ValueError(
-                    f"cell_size must be at least the largest diameter {dmax}, got {cell_size}"
-                )
-        model = _build_model(
+        _checks.check_periodic_room(box, rad)
+        cell_size = _checks.as_cell_size(cell_size, rad)
+        model = _state.build_model(
             system, seed,
             _physics.Restitution.check(system, restitution=restitution,
                                        wall_restitution=wall_restitution, tc=tc),
@@ -261,8 +248,6 @@ class Simulation(SimulationBase):
             box, wall_list, pos, vel, rad, mass, float(t0),
             species=None if species is None else spec, model=model, gravity=g,
             growth=growth, cell_size=cell_size, families=families)
-
-
 
     def __len__(self) -> int:
         """The number of disks."""
@@ -797,7 +782,6 @@ class Simulation(SimulationBase):
         return _operations.run(self, until=until, collisions=collisions,
                                operations=operations, progress=progress)
 
-
     # ------------------------------------------------------------------ copies
     def __getstate__(self) -> dict:
         """For pickle and copies: the engine's state, which pickles itself."""
@@ -833,19 +817,3 @@ for _name in ("S", "E", "stamp", "nxt", "prv", "qt", "tcand", "invm", "mass", "o
               "outgrow_diameter"):
     setattr(Simulation, "_" + _name, _engine_attribute(_name))
 del _name
-
-
-def _build_model(system, seed, contact, heated, thermostat):
-    """The :class:`~edmd2d.models.Model` of the checked families, or ``None`` for
-    elastic disks between reflecting walls without a thermostat (the engine's default
-    path)."""
-    if contact.elastic and not heated.active and thermostat is None:
-        return None
-    rng = None
-    if heated.active or thermostat is not None:
-        rng = as_generator("seed", seed)
-    return _models.Model(
-        contact.table, contact.wall, contact.tc, contact.species, heated.kt,
-        None if thermostat is None else (thermostat.temperature, thermostat.rate), rng,
-        system.time)
-

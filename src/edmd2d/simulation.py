@@ -1,5 +1,5 @@
 """The :class:`Simulation`: the public facade that checks input, builds the engine's
-state (:class:`edmd2d._state.EngineState`), advances it and reads it."""
+state (``edmd2d._state.EngineState``), advances it and reads it."""
 
 from __future__ import annotations
 
@@ -805,7 +805,7 @@ def _engine_attribute(name: str) -> property:
     """A private attribute of ``Simulation`` that is the engine state's ``name``."""
     return property(lambda self: getattr(self._state, name),
                     lambda self, value: setattr(self._state, name, value),
-                    doc=f"The engine state's ``{name}`` (:class:`edmd2d._state.EngineState`).")
+                    doc=f"The engine state's ``{name}`` (``edmd2d._state.EngineState``).")
 
 
 # The engine's tables, grid, queue and hooks, under the private names by which the

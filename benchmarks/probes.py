@@ -17,7 +17,7 @@ Compile time
 Memory
     After importing edmd2d and running a 100-disk system (so that the JIT and the
     interpreter are warm: this is the baseline), a gas of N disks is built and run for
-    N collisions.  Reported per disk: the engine's numpy arrays (``vars(sim)``, private
+    N collisions.  Reported per disk: the engine's numpy arrays (``vars(sim._state)``, private
     attributes read for the measurement only), the bytes traced by ``tracemalloc``
     (numpy reports its array allocations to it) while held after the build, at the
     peak of the build and at the peak of the run, and the growth of the process's peak

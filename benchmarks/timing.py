@@ -27,13 +27,13 @@ def stats(values) -> dict:
 def engine_array_bytes(sim) -> int:
     """Bytes held by the Simulation's numpy arrays (state, grid, event queue, counters).
 
-    This reads the *private* attributes through ``vars(sim)``: a measurement, not an
+    This reads the *private* attributes through ``vars(sim._state)``: a measurement, not an
     API.  Everything the engine needs between events lives in these arrays, so their
     total is the engine's memory footprint.  Several per-disk columns are views into
     the two row tables: each buffer is counted once.
     """
     owners = {}
-    for v in vars(sim).values():
+    for v in vars(sim._state).values():
         if isinstance(v, np.ndarray):
             while isinstance(v.base, np.ndarray):  # (a view: count its owner, once)
                 v = v.base

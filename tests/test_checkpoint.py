@@ -133,12 +133,31 @@ def test_another_format_version_is_refused(tmp_path):
         checkpoint.load(tmp_path / "future")
 
 
+def test_a_checkpoint_of_format_version_1_is_refused(tmp_path):
+    # Version 1 held the attributes of the Simulation itself; version 2 the engine's
+    # state: the old files are refused with a message that names their version.
+    path = tmp_path / "run.edmd2d"
+    checkpoint.save(ed.make_gas(50, 0.3, seed=seed_of(1)), path)
+    with zipfile.ZipFile(path) as z:
+        members = {name: z.read(name) for name in z.namelist()}
+    header = json.loads(members["header.json"])
+    header["version"] = 1
+    header["state"] = {"_" + key: value for key, value in header["state"].items()}
+    members["header.json"] = json.dumps(header).encode()
+    with zipfile.ZipFile(tmp_path / "old", "w") as z:
+        for name, data in members.items():
+            z.writestr(name, data)
+    assert checkpoint.VERSION == 2
+    with pytest.raises(ValueError, match="format version 1 .*reads version 2"):
+        checkpoint.load(tmp_path / "old")
+
+
 def test_parts_of_two_checkpoints_do_not_make_one(tmp_path):
     checkpoint.save(ed.make_gas(50, 0.3, seed=seed_of(1)), tmp_path / "a")
     checkpoint.save(ed.make_gas(80, 0.3, seed=seed_of(1)), tmp_path / "b")
     with zipfile.ZipFile(tmp_path / "a") as za, zipfile.ZipFile(tmp_path / "b") as zb:
         members = {name: za.read(name) for name in za.namelist()}
-        members["_E.npy"] = zb.read("_E.npy")
+        members["E.npy"] = zb.read("E.npy")
     with zipfile.ZipFile(tmp_path / "mixed", "w") as z:
         for name, data in members.items():
             z.writestr(name, data)

@@ -107,8 +107,8 @@ def test_a_copy_runs_like_the_original(how):
     sim.advance(collisions=1000)
     twin = {"deepcopy": copy.deepcopy, "copy": copy.copy,
             "pickle": lambda s: pickle.loads(pickle.dumps(s))}[how](sim)
-    assert not any(np.shares_memory(a, b) for a in vars(sim).values()
-                   for b in vars(twin).values()
+    assert not any(np.shares_memory(a, b) for a in vars(sim._state).values()
+                   for b in vars(twin._state).values()
                    if isinstance(a, np.ndarray) and isinstance(b, np.ndarray))
     assert _view_offsets(twin) == _VIEW_OFFSETS
     assert twin._S.ctypes.data % 64 == 0 and twin._E.ctypes.data % 64 == 0
@@ -118,34 +118,32 @@ def test_a_copy_runs_like_the_original(how):
     assert sim.counts == twin.counts
 
 
-def test_unpickling_state_from_before_the_queue_kept_first():
-    # A pickle whose queue state lacks the last slot (qs[FIRST], added later) loads and
-    # runs like the original; any other length is refused instead of read past its end.
-    # Its lookahead stage notes (column STAGED, -1 before the notes existed) load as
-    # "none given"; the notes of a current pickle are kept.
+def test_a_pickle_keeps_the_lookahead_notes_and_refuses_what_it_cannot_read():
+    # A pickle keeps the lookahead stage notes (column STAGED) and runs like the
+    # original; a queue state of another length is refused instead of read past its
+    # end, and so is a pickle of the format that held the Simulation's attributes
+    # (version 1) rather than the engine's state.
     from edmd2d._engine import layout, queue
+    from edmd2d._state import EngineState
 
     sim = ed.make_gas(600, 0.5, seed=seed_of(4))
     sim._qs[queue.LOOKAHEAD] = 1
     sim.advance(collisions=500)
-    state = pickle.loads(pickle.dumps(sim)).__getstate__()  # (arrays of its own)
-    staged = state["_E"][:, layout.STAGED].copy()
+    state = pickle.loads(pickle.dumps(sim))._state.__getstate__()  # (arrays of its own)
+    staged = state["E"][:, layout.STAGED].copy()
     assert (staged != 0).any() and (staged & ~layout.STAGE_BITS == 0).all()
-    current = ed.Simulation.__new__(ed.Simulation)
-    current.__setstate__(state)
-    assert np.array_equal(current._E[:, layout.STAGED], staged)
-    old = dict(state, _qs=state["_qs"][:queue.FIRST].copy(), _E=state["_E"].copy())
-    old["_E"][:, layout.STAGED] = -1
-    twin = ed.Simulation.__new__(ed.Simulation)
-    twin.__setstate__(old)
-    assert len(twin._qs) == queue.N_QS and twin._qs[queue.FIRST] == -1
-    assert (twin._E[:, layout.STAGED] == 0).all()
+    twin = pickle.loads(pickle.dumps(sim))
+    assert np.array_equal(twin._E[:, layout.STAGED], staged)
+    assert len(twin._qs) == queue.N_QS
     sim.advance(collisions=2000)
     twin.advance(collisions=2000)
     assert np.array_equal(sim.positions, twin.positions) and sim.counts == twin.counts
     with pytest.raises(ValueError, match="incompatible version"):
+        EngineState.__new__(EngineState).__setstate__(
+            dict(state, qs=state["qs"][:queue.FIRST - 1]))
+    with pytest.raises(ValueError, match="format version 1"):
         ed.Simulation.__new__(ed.Simulation).__setstate__(
-            dict(state, _qs=state["_qs"][:queue.FIRST - 1]))
+            {"_" + key: value for key, value in state.items()})
 
 
 @pytest.mark.parametrize("dtype, width, align", [(np.float64, 8, 64), (np.int32, 8, 32),

@@ -24,7 +24,7 @@ LAYERS = [
      "progress", "_compile_notice", "theory", "geometry", "_engine"},
     # what the simulation is built from, and what reads a simulation through its
     # public state only
-    {"models", "physics", "_placement", "_operations", "reference"},
+    {"models", "physics", "_placement", "_operations", "reference", "_checks", "_state"},
     {"measurements"},
     {"simulation"},
     {"analysis", "compress", "checkpoint", "io"},

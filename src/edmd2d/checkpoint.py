@@ -47,6 +47,7 @@ from . import models as _models
 from . import physics as _physics
 from ._atomic import replacing
 from ._operations import Operation, Trigger
+from ._state import EngineState
 from ._version import __version__
 from .geometry import Box, Wall
 from .simulation import Simulation
@@ -57,7 +58,7 @@ __all__ = ["FORMAT", "VERSION", "save", "load", "read_metadata", "Checkpoint"]
 FORMAT = "edmd2d-checkpoint"
 #: The format version, bumped when what a checkpoint holds changes incompatibly;
 #: :func:`load` refuses other versions.
-VERSION = 1
+VERSION = 2
 
 _HEADER = "header.json"
 
@@ -87,7 +88,8 @@ def save(sim, path, *, metadata: dict | None = None) -> None:
     if not isinstance(sim, Simulation):
         raise TypeError(f"save() needs an edmd2d.Simulation, got {type(sim).__name__}")
     arrays: dict[str, np.ndarray] = {}
-    state = {key: _encode(key, value, arrays) for key, value in sim.__getstate__().items()}
+    state = {key: _encode(key, value, arrays)
+             for key, value in sim._state.__getstate__().items()}
     header = {"format": FORMAT, "version": VERSION, "edmd2d": __version__, "state": state}
     if metadata is not None:
         if not isinstance(metadata, dict):
@@ -127,9 +129,11 @@ def load(path):
     header, arrays = _read(path, arrays=True)
     try:
         state = {key: _decode(value, arrays) for key, value in header["state"].items()}
+        engine = EngineState.__new__(EngineState)
+        engine.__setstate__(state)
+        _check_consistent(engine)
         sim = Simulation.__new__(Simulation)
-        sim.__setstate__(state)
-        _check_consistent(sim)
+        sim.__setstate__({"_state": engine})
     except (KeyError, TypeError, ValueError, IndexError) as exc:
         raise ValueError(f"{path} holds an inconsistent state ({exc})") from None
     return sim
@@ -277,14 +281,14 @@ def _decode(value, arrays):
     raise ValueError(f"unknown entry {kind!r}")
 
 
-def _check_consistent(sim) -> None:
-    """The tables and per-disk arrays of ``sim`` fit together (a file assembled from
-    parts of two checkpoints would not)."""
-    n = len(sim._S)
-    for name in ("_E", "_mass", "_image", "_order", "_hv"):
-        if len(getattr(sim, name)) != n:
-            raise ValueError(f"{name} has {len(getattr(sim, name))} rows, not {n}")
-    if sorted(sim._order.tolist()) != list(range(n)):
+def _check_consistent(state) -> None:
+    """The tables and per-disk arrays of the engine's ``state`` fit together (a file
+    assembled from parts of two checkpoints would not)."""
+    n = len(state.S)
+    for name in ("E", "mass", "image", "order", "hv"):
+        if len(getattr(state, name)) != n:
+            raise ValueError(f"{name} has {len(getattr(state, name))} rows, not {n}")
+    if sorted(state.order.tolist()) != list(range(n)):
         raise ValueError("the disk order is not a permutation")
 
 

@@ -218,15 +218,7 @@ class Model:
         return new
 
     def __setstate__(self, state: dict) -> None:
-        # Saved before heated walls and thermostats: none of either.
-        if "hold" not in state:
-            inelastic = bool((state["table"] < 1.0).any()) or state["wall"] < 1.0
-            state["hold"] = state["tc"] if inelastic else 0.0
-            state["wall_kt"] = np.zeros(4)
-            state["thermo"] = np.array([0.0, 0.0, math.inf])
-            state["rng"] = np.random.default_rng()
-            state["buffer"] = np.zeros(0)
-            state["cursor"] = np.zeros(1, np.int64)
+        """For pickles and checkpoints: the fields as :func:`vars` gave them."""
         vars(self).update(state)
 
     def __repr__(self) -> str:
@@ -238,10 +230,6 @@ class Model:
         if self.thermostat is not None:
             text += f", thermostat=(kT={self.thermostat[0]:g}, rate={self.thermostat[1]:g})"
         return text + ")"
-
-
-# (The name of the class before it held more than restitution: old pickles refer to it.)
-Restitution = Model
 
 
 def as_species(value, n: int) -> np.ndarray:

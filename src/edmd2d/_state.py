@@ -1,0 +1,762 @@
+"""The engine's state, owned in one place: :class:`EngineState`.
+
+It holds the row tables and their column views, the grid and the wall segments listed
+per cell, the calendar queue, the tallies, the event log, the Z-order re-sorting, the
+regridding of growing disks, the calls of the event loop and the translation of its
+status codes into exceptions.  ``Simulation`` (the facade) checks its input, builds
+one and reads it; checkpoints save and load one field by field.
+"""
+
+from __future__ import annotations
+
+import math
+import time as _time
+
+import numpy as np
+
+from . import _checks
+from . import models as _models
+from . import progress as _progress
+from ._checks import OVERLAP_TOL
+from ._engine import aligned_rows
+from ._engine import flight as _flight
+from ._engine import grid as _grid
+from ._engine import layout as _layout
+from ._engine import loop as _loop
+from ._engine import overlap as _overlap
+from ._engine import queue as _queue
+from ._validate import about, as_generator, indices_where
+from .geometry import BOX_WALL_EQUATIONS, MAX_LENGTH
+
+__all__ = ["EngineState", "build_model", "EVENT_KINDS", "EVENT_DTYPE", "VERSION"]
+
+#: The version of the state's layout: pickles and checkpoints of another are refused.
+VERSION = 2
+
+# Margin by which a cell exceeds the largest diameter, so that a centre that is a
+# rounding error outside its logical cell is still seen by its neighbours.
+_CELL_MARGIN = 1e-9
+# Events per engine call; between calls Python regains control, so that Ctrl-C stops a
+# run within a fraction of a second (2^18 events: 0.1-0.5 s at 0.5-2 M events/s),
+# leaving it at the last event processed.
+_CHUNK_EVENTS = 1 << 18
+# Events in a row at one instant after which disks count as wedged (no configuration
+# needs more: a row of simultaneous contacts, a lattice crossing its cells together):
+# per disk, and at least as many as this minimum.
+_WEDGED_EVENTS_PER_DISK = 64
+_WEDGED_EVENTS_MIN = 1 << 20
+# Events per engine call when a progress bar is shown (a few ms at 10^6 coll/s).
+_PROGRESS_EVENTS = 1 << 16
+# Systems at least this large are kept sorted in memory along a Z-order curve over the
+# grid cells, re-sorted every _REORDER_EVENTS_PER_DISK * N events: disks near in space
+# then sit near in memory, which matters once the state no longer fits in the caches.
+_REORDER_MIN_DISKS = 1024
+_REORDER_EVENTS_PER_DISK = 20
+# Under growth the grid is built for a largest diameter this much above the current one,
+# and rebuilt when the disks reach it (an O(N) rebuild every 10% of growth).
+_GROWTH_GRID_SLACK = 1.1
+# The engine's physics families of elastic disks between reflecting walls: none.
+_NO_MODEL = _layout.ModelFamilies(None, None, None, None)
+
+_KIND_NAMES = {_layout.DISK: "disk", _layout.SEGMENT: "wall", _layout.BOX: "box",
+               _layout.KICK: "thermostat"}
+_KIND_CODES = np.array(sorted(_KIND_NAMES))
+EVENT_KINDS = tuple(_KIND_NAMES[k] for k in _KIND_CODES)
+EVENT_DTYPE = np.dtype([("time", "f8"), ("kind", "U10"), ("disk", "i8"),
+                        ("partner", "i8"), ("impulse", "f8")])
+
+
+def build_model(system, seed, contact, heated, thermostat):
+    """The :class:`~edmd2d.models.Model` of the checked families, or ``None`` for
+    elastic disks between reflecting walls without a thermostat (the engine's default
+    path)."""
+    if contact.elastic and not heated.active and thermostat is None:
+        return None
+    rng = None
+    if heated.active or thermostat is not None:
+        rng = as_generator("seed", seed)
+    return _models.Model(
+        contact.table, contact.wall, contact.tc, contact.species, heated.kt,
+        None if thermostat is None else (thermostat.temperature, thermostat.rate), rng,
+        system.time)
+
+class EngineState:
+    """Everything a simulation holds between two calls of the event loop, in the
+    engine's internal row order (row ``k`` holds the user's disk ``order[k]``).
+
+    Parameters
+    ----------
+    box, walls
+        The container and its wall segments (checked).
+    pos, vel, rad, mass : numpy.ndarray
+        The disks in the user's order (checked, ``pos`` inside the box).
+    time : float
+        The clock.
+    species, model, gravity, growth, cell_size, families
+        The checked physics: ``species`` an int array or ``None``, ``model`` a
+        :class:`~edmd2d.models.Model` or ``None``, ``gravity`` an array of shape (2,)
+        or ``None``, ``growth`` a ``physics.Growth`` or ``None``, ``families`` the
+        registered families by name.
+
+    Raises
+    ------
+    ValueError
+        For overlapping disks, or a disk at rest on a wall that gravity presses it
+        into.
+    """
+
+    # Per-disk columns that are views into the rows of S and E (loop.row_views).
+    ROW_VIEWS = ("stamp", "nxt", "prv", "qt", "tcand", "invm")
+
+    def __init__(self, box, walls, pos, vel, rad, mass, time, *, species, model, gravity,
+                 growth, cell_size, families) -> None:
+        n = len(pos)
+        self.box = box
+        self.walls = tuple(walls)
+        self.gravity = gravity
+        # Per-disk state and bookkeeping, one 64-byte row each in S and E (see
+        # _engine/layout.py for the columns).
+        state = aligned_rows(n, _layout.N_STATE, np.float64)  # 64-byte rows, aligned
+        state[:] = 0.0  # (also the spare bytes: the rows are compared bit for bit)
+        state[:, _layout.X:_layout.Y + 1] = pos
+        state[:, _layout.VX:_layout.VY + 1] = vel
+        state[:, _layout.T] = time
+        state[:, _layout.R] = rad
+        # E: the bookkeeping table (cell, kept candidate, queue links and time).
+        _, table, hv, qhead, qs, qf = _queue.allocate(n)
+        self.mass = mass
+        self.time = float(time)
+        # (The stamps start at 0.)
+        vars(self).update(self.tables(state, table, hv, qhead, qs, qf))
+        with np.errstate(divide="ignore"):
+            self.invm[:] = np.where(np.isinf(mass), 0.0, 1.0 / mass)
+        self.tcand[:] = np.inf
+        # Image counters stay int64: a fast disk in a small periodic box can wrap more
+        # than 2^31 times in a long run.
+        self.image = np.zeros((n, 2), np.int64)
+        if self.walls:
+            self.wa = np.array([w.start for w in self.walls], np.float64)
+            self.wb = np.array([w.end for w in self.walls], np.float64)
+        else:
+            self.wa = np.zeros((0, 2))
+            self.wb = np.zeros((0, 2))
+        # Each segment's impulses and contacts (layout.W_*), summed by the engine.
+        self.wacc = np.zeros((len(self.walls), _layout.N_WACC))
+        self.cell_size = cell_size
+        self.growth = None if growth is None else np.array([growth.rate, self.time])
+        self.build_grid(pos, self.grid_diameter(2.0 * float(rad.max())), cell_size)
+        with about("positions"):
+            self.check_overlaps(pos, rad)
+        _layout.support_view(state)[:] = _checks.resting(box, self.walls, gravity, pos,
+                                                         vel, rad, mass, model)
+        self.species = species
+        self.model = model
+        self.families = families
+        self.counts = np.zeros(_layout.N_COUNTS, np.int64)
+        self.acc = np.zeros(_layout.N_ACC, np.float64)
+        self.set_log(0)
+        self.listener = None  # (see stream; not part of the saved state)
+        self.order = np.arange(n, dtype=np.int64)
+        self.reorder_every = (
+            _REORDER_EVENTS_PER_DISK * n if n >= _REORDER_MIN_DISKS else np.iinfo(np.int64).max
+        )
+        self.since_reorder = 0
+        self.predict_all()
+        if n >= _REORDER_MIN_DISKS:
+            self.reorder()
+
+    def __len__(self) -> int:
+        return len(self.S)
+
+    # ------------------------------------------------------------------ tables
+    @classmethod
+    def tables(cls, state, table, hv, qhead, qs, qf) -> dict:
+        """The attributes for the tables ``S`` and ``E``, the queue's other arrays and
+        the per-disk columns that are views into ``S`` and ``E`` (the queue times among
+        them): to be installed together, by one ``vars(self).update``."""
+        attrs = dict(S=state, E=table, hv=hv, qhead=qhead, qs=qs, qf=qf)
+        attrs.update(zip(cls.ROW_VIEWS, _layout.row_views(state, table)))
+        return attrs
+
+    def __getstate__(self) -> dict:
+        """For pickles, copies and checkpoints: without the views into ``S`` and ``E``,
+        which a copy would turn into arrays of their own, detached from the copied
+        tables (:meth:`__setstate__` rebuilds them), and without a stream's callback
+        and what it collected (a copy does not stream, and its log is empty)."""
+        state = dict(vars(self))
+        for name in self.ROW_VIEWS:
+            del state[name]
+        for name in ("listener", "recorded"):
+            state.pop(name, None)
+        for name, empty in (("log_t", np.zeros(0)), ("log_e", np.zeros((0, 3), np.int64)),
+                            ("log_j", np.zeros(0)), ("log_n", np.zeros(1, np.int64))):
+            state[name] = empty
+        return state
+
+    def __setstate__(self, state: dict) -> None:
+        state = dict(state)
+        if len(state["qs"]) != _queue.N_QS:
+            raise ValueError(
+                f"queue state of {len(state['qs'])} entries, expected {_queue.N_QS}: "
+                "written by an incompatible version of edmd2d")
+        tables = []
+        for name in ("S", "E"):  # (back on 64-byte boundaries: a copy may not be)
+            table = aligned_rows(*state[name].shape, state[name].dtype)
+            table[:] = state.pop(name)
+            tables.append(table)
+        state.update(self.tables(*tables, *(state.pop(name) for name in
+                                            ("hv", "qhead", "qs", "qf"))))
+        state["listener"] = None
+        vars(self).update(state)
+
+    # ------------------------------------------------------------------ grid
+    def build_grid(self, pos: np.ndarray, dmax: float, cell_size: float | None) -> None:
+        """(Re)build the grid for disks of largest diameter ``dmax`` at ``pos`` (stored
+        positions, inside the box): the cell geometry, each disk's cell, the cells'
+        lists and the wall segments listed per cell.  Cells are at least ``dmax`` wide
+        (``cell_size``, if given, is at least that); the default widens them in dilute
+        systems to keep at most about two cells per disk.  The kept candidates and the
+        queue are not touched: predict every disk afresh after a rebuild.
+
+        Under growth the grid holds until the largest diameter reaches ``dmax``
+        (:meth:`time_of_diameter` of it)."""
+        self.grid_dmax = float(dmax)
+        width, height = self.box.width, self.box.height
+        side_min = dmax * (1.0 + _CELL_MARGIN)
+        if cell_size is None:
+            side = max(side_min, math.sqrt(width * height / (2.0 * len(pos))))
+        else:
+            side = max(cell_size, side_min)
+        ncx = max(1, int(width // side))
+        ncy = max(1, int(height // side))
+        periodic = self.box.periodic
+        self.gi = np.array([ncx, ncy, int(periodic[0]), int(periodic[1])], np.int64)
+        self.gf = np.array([width, height, width / ncx, height / ncy], np.float64)
+        self.head = np.empty(ncx * ncy, np.int32)
+        _grid.build_cells(pos, self.gi, self.gf, self.E[:, _layout.CELL], self.head,
+                          self.nxt, self.prv)
+        reach = 0.5 * dmax + _CELL_MARGIN * (side + dmax)
+        self.wstart, self.wwall, self.wsx, self.wsy = _grid.bucket_walls(
+            self.wa, self.wb, self.gi, self.gf, reach
+        )
+
+    def check_overlaps(self, pos: np.ndarray, rad: np.ndarray) -> None:
+        """Refuse disks (at ``pos``, in row order, on the grid) that overlap each
+        other, their periodic images or a wall segment."""
+        i, j, dist = _overlap.first_disk_overlap(
+            pos, rad, self.gi, self.gf, self.E[:, _layout.CELL], self.head, self.nxt,
+            OVERLAP_TOL,
+        )
+        if i >= 0:
+            what = "its own periodic image" if i == j else f"disk {j}"
+            contact = rad[i] + rad[j]
+            raise ValueError(
+                f"positions: disk {i} overlaps {what} (centre distance {dist:.17g} < "
+                f"sum of radii {contact:.17g}, by {1.0 - dist / contact:.3g} of it)"
+            )
+        if not self.walls:
+            return
+        i, w, dist = _overlap.first_wall_overlap(
+            pos, rad, self.gf, self.E[:, _layout.CELL], self.wa, self.wb,
+            self.wstart, self.wwall, self.wsx, self.wsy, OVERLAP_TOL,
+        )
+        if i >= 0:
+            raise ValueError(
+                f"positions: disk {i} overlaps walls[{w}] (distance {dist:.17g} < "
+                f"radius {rad[i]:.17g}, by {1.0 - dist / rad[i]:.3g} of it)"
+            )
+
+    # ------------------------------------------------------------------ growth
+    def growth_factor(self, t: float) -> float:
+        """The factor by which every radius at ``t`` exceeds its stored value (1 without
+        growth; the engine's ``scan.growth_factor``)."""
+        growth = self.growth_bundle()
+        if growth is None:
+            return 1.0
+        return 1.0 + growth.rate * (t - growth.t0)
+
+    def grid_diameter(self, dmax: float) -> float:
+        """The largest diameter to build the grid for, the current one being ``dmax``:
+        that one, or under growth a margin above it (but within the box)."""
+        if self.growth is None:
+            return dmax
+        return min(dmax * _GROWTH_GRID_SLACK, max(dmax, self.outgrow_diameter()))
+
+    def outgrow_diameter(self) -> float:
+        """The largest diameter the box holds: a disk that wide would overlap its own
+        periodic image, or fill the box between its walls."""
+        return min(self.box.width, self.box.height) * (1.0 - OVERLAP_TOL)
+
+    def time_of_diameter(self, diameter: float) -> float:
+        """Under growth, the time at which the largest diameter reaches ``diameter``."""
+        growth = self.growth_bundle()
+        d0 = 2.0 * float(self.S[:, _layout.R].max())
+        return growth.t0 + (diameter / d0 - 1.0) / growth.rate  # (rate > 0: physics.Growth)
+
+    def regrid(self) -> None:
+        """Bring every disk to the current time, rebuild the grid (under growth: for
+        the disks' growth ahead) and predict every disk afresh."""
+        self.sync_all()
+        dmax = 2.0 * float(self.S[:, _layout.R].max()) * self.growth_factor(self.time)
+        self.build_grid(self.S[:, _layout.X:_layout.Y + 1], self.grid_diameter(dmax),
+                        self.cell_size)
+        self.predict_all()
+
+    def set_growth(self, growth) -> None:
+        """Fix the radii at their present values, then let them grow at ``growth``
+        (a checked ``physics.Growth``, or ``None``) from now on."""
+        self.S[:, _layout.R] = self.S[:, _layout.R] * self.growth_factor(self.time)
+        self.growth = None if growth is None else np.array([growth.rate, self.time])
+        if growth is None:
+            self.predict_all()
+        else:
+            self.regrid()  # (a grid with room to grow)
+
+    # ------------------------------------------------------------------ editing
+    def place(self, pos: np.ndarray, rest: np.ndarray) -> None:
+        """Move every disk to ``pos`` (checked, user order) at the current time, with
+        the supports ``rest``; rebuild the grid and predict every disk afresh."""
+        self.sync_all()
+        self.S[:, _layout.X:_layout.Y + 1] = pos[self.order]
+        _layout.support_view(self.S)[:] = rest[self.order]
+        self.image[:] = 0
+        dmax = 2.0 * float(self.S[:, _layout.R].max()) * self.growth_factor(self.time)
+        self.build_grid(self.S[:, _layout.X:_layout.Y + 1], self.grid_diameter(dmax),
+                        self.cell_size)
+        self.predict_all()
+
+    def set_velocities(self, vel: np.ndarray, rest: np.ndarray) -> None:
+        """Give every disk the velocity ``vel`` (checked, user order) at the current
+        time, with the supports ``rest``, and predict every disk afresh."""
+        self.sync_all()
+        self.S[:, _layout.VX:_layout.VY + 1] = vel[self.order]
+        _layout.support_view(self.S)[:] = rest[self.order]
+        self.predict_all()  # every event and kept candidate is recomputed
+
+    def sync_all(self) -> None:
+        """Move every stored position to the current time (local clocks all equal)."""
+        _flight.drift_all(self.time, self.S, self.gravity_bundle())
+
+    # ------------------------------------------------------------------ readouts
+    def to_user(self, internal: np.ndarray) -> np.ndarray:
+        """Rows in the user's disk order: a new, read-only array (editing it could not
+        change the simulation, so an edit fails instead of passing silently)."""
+        out = np.empty_like(internal)
+        out[self.order] = internal
+        out.flags.writeable = False
+        return out
+
+    def positions(self) -> np.ndarray:
+        """Centres at :attr:`time`, wrapped into the box, in internal row order."""
+        out = np.empty((len(self.S), 2))
+        _flight.synchronized_positions(self.time, self.S, self.gi, self.gf, out,
+                                       self.gravity_bundle())
+        return out
+
+    def unwrapped(self) -> np.ndarray:
+        """Unwrapped centres at :attr:`time`, in internal row order."""
+        return (_flight.positions_at(self.time, self.S, self.gravity_bundle())
+                + self.image * self.box.size)
+
+    def velocities(self) -> np.ndarray:
+        """Velocities at :attr:`time`, in internal row order (a new array)."""
+        return _flight.velocities_at(self.time, self.S, self.gravity_bundle())
+
+    def accumulators(self) -> dict:
+        """Raw sums since creation: the collision virial ``sum J |r_ij|``, its diagonal
+        components ``sum J |r_ij| n_x^2`` and ``n_y^2`` (``n`` the contact normal), and the
+        impulses on the walls (``J`` the impulse magnitude of a contact):
+
+        - ``"box_impulse"``, shape (4,): ``sum J`` on each box wall (x=0, x=width, y=0,
+          y=height);
+        - ``"segment_impulse"``: ``sum J`` over all wall segments;
+        - ``"segment_impulses"``, shape (S, 2): the impulse vector each segment received,
+          ``sum -J n`` (``n`` the unit normal from the segment to the disk);
+        - ``"segment_side_impulses"``, shape (S, 2): ``sum J`` over the contacts on each
+          side of each segment, left then right (the left side lies to the left going
+          from ``start`` to ``end``: counterclockwise polygons have their inside there);
+        - ``"segment_end_impulses"``, shape (S,): ``sum J`` at each segment's end points;
+        - ``"segment_contacts"``, shape (S,): contact events of each segment (as counted
+          in ``counts.wall_collisions``).
+
+        At a heated wall ``J`` is the normal component of the momentum change (the
+        tangential one is in ``"segment_impulses"`` for a segment).
+
+        Over all segments, the side and end-point sums add up to ``"segment_impulse"``
+        (to rounding)."""
+        a = self.acc
+        w = self.wacc
+        return {
+            "virial": float(a[_layout.A_VIRIAL]),
+            "virial_xx": float(a[_layout.A_VIRIAL_XX]),
+            "virial_yy": float(a[_layout.A_VIRIAL_YY]),
+            "box_impulse": a[_layout.A_BOX:_layout.A_BOX + 4].copy(),
+            "segment_impulse": float(a[_layout.A_SEGMENTS]),
+            "segment_impulses": w[:, _layout.W_FX:_layout.W_FY + 1].copy(),
+            "segment_side_impulses": w[:, _layout.W_LEFT:_layout.W_RIGHT + 1].copy(),
+            "segment_end_impulses": w[:, _layout.W_ENDS].copy(),
+            "segment_contacts": w[:, _layout.W_CONTACTS].astype(np.int64),
+        }
+
+    # ------------------------------------------------------------------ event log
+    def stream(self, callback, capacity: int) -> None:
+        """Hand every processed event to ``callback`` in batches of up to ``capacity``
+        (checked); ``None`` stops the stream.  The events logged so far go to the
+        previous callback first."""
+        self.drain()
+        self.listener = callback
+        self.set_log(0 if callback is None else capacity)
+
+    def set_log(self, capacity: int) -> None:
+        self.log_t = np.zeros(capacity)
+        self.log_e = np.zeros((capacity, 3), np.int64)
+        self.log_j = np.zeros(capacity)
+        self.log_n = np.zeros(1, np.int64)
+
+    def drain(self) -> None:
+        """Hand the events in the engine's log to the listener and empty it."""
+        k = int(self.log_n[0])
+        if k == 0 or self.listener is None:
+            return
+        batch = np.empty(k, dtype=EVENT_DTYPE)
+        batch["time"] = self.log_t[:k]
+        batch["kind"] = np.array(EVENT_KINDS)[np.searchsorted(_KIND_CODES,
+                                                              self.log_e[:k, 0])]
+        batch["disk"] = self.log_e[:k, 1]
+        batch["partner"] = self.log_e[:k, 2]
+        batch["impulse"] = self.log_j[:k]
+        self.log_n[0] = 0
+        self.listener(batch)
+
+    def record_events(self, capacity: int = 1 << 16) -> None:
+        """Record every disk, wall and thermostat event (for :meth:`recorded_events`)."""
+        self.recorded = []
+        self.stream(self.recorded.append, capacity)
+
+    def recorded_events(self) -> list[tuple[float, str, int, int]]:
+        """Recorded events as ``(time, kind, disk, partner)``; kind is "disk", "wall"
+        (partner: wall index), "box" (partner: 0..3 for x=0, x=width, y=0, y=height) or
+        "thermostat" (partner -1)."""
+        self.drain()
+        return [(float(e["time"]), str(e["kind"]), int(e["disk"]), int(e["partner"]))
+                for batch in self.recorded for e in batch]
+
+    # ------------------------------------------------------------------ engine calls
+    def run(self, t_end, max_collisions, max_events, out, info, mode):
+        """One call of the event loop, with the state in its bundles (see loop.py).
+
+        The physics families not in use are ``None``; a model hands over restitution
+        and the TC model always (a model of heated walls or a thermostat alone runs
+        its contacts with ``e = 1`` through them), the others as it uses them."""
+        families = _NO_MODEL if self.model is None else self.model.engine_families()
+        return _loop.run(
+            _layout.Control(t_end, max_collisions, max_events, mode, out, info),
+            _layout.Particles(self.S, self.E, self.stamp, self.nxt, self.prv,
+                              self.qt, self.tcand, self.invm, self.image, self.order),
+            _layout.Grid(self.gi, self.gf, self.head),
+            _layout.Walls(self.wa, self.wb, self.wstart, self.wwall, self.wsx,
+                          self.wsy),
+            _layout.Calendar(self.hv, self.qhead, self.qs, self.qf),
+            _layout.Tallies(self.counts, self.acc, self.wacc),
+            _layout.Log(self.log_t, self.log_e, self.log_n, self.log_j),
+            families.contact, families.heated, families.thermostat, families.uniforms,
+            self.gravity_bundle(), self.growth_bundle(),
+        )
+
+    def gravity_bundle(self):
+        """The engine's gravity family: ``None`` (straight-line flight) or a
+        ``layout.Gravity`` holding this state's inverse masses and supports."""
+        g = self.gravity
+        return (None if g is None else
+                _layout.Gravity(float(g[0]), float(g[1]), self.invm,
+                                _layout.support_view(self.S)))
+
+    def growth_bundle(self):
+        """The engine's growth family: ``None`` (fixed radii) or a ``layout.Growth``."""
+        if self.growth is None:
+            return None
+        rate, t0 = self.growth.tolist()  # (stored as an array, which checkpoints hold)
+        return _layout.Growth(rate, t0)
+
+    def queue_args(self):
+        return (self.qt, self.E, self.hv, self.qhead, self.qs, self.qf)
+
+    def reorder(self) -> None:
+        """Re-sort the internal rows along the Z-order of their cells (see module top).
+
+        Every new array is built first and all are swapped in by one ``dict.update``,
+        so an interrupt cannot leave them half permuted.  The queue is rebuilt rather than
+        renumbered, which keeps its tie order (time, then internal index) exact.
+        """
+        # (The cells' Morton ranks are recomputed each time rather than held: a few
+        # bytes a disk less for a small cost every 20 N events.)
+        rank = _grid.morton_rank(int(self.gi[0]), int(self.gi[1]))
+        perm = _grid.order_by_cell(self.E[:, _layout.CELL], rank, len(rank))
+        inv = np.empty_like(perm)
+        inv[perm] = np.arange(len(perm))
+        # (Whole rows move: the stamps with S, the queue times, candidate times and
+        # inverse masses with E.  The cell lists and the queue are rebuilt; queue
+        # links left in the rows of disks that end up outside the lists go unread.)
+        state = aligned_rows(len(perm), _layout.N_STATE, np.float64)
+        state[:] = self.S[perm]
+        _, table, hv, qhead, qs, qf = _queue.allocate(len(perm))
+        qs[_queue.LOOKAHEAD] = self.qs[_queue.LOOKAHEAD]  # (forced on in tests)
+        table[:] = self.E[perm]
+        table[:, _layout.STAGED] = 0  # (what the lookahead fetched has moved)
+        disk = table[:, _layout.KIND] & _layout.KIND_MASK == _layout.DISK
+        table[disk, _layout.PARTNER] = inv[table[disk, _layout.PARTNER]]
+        _, nxt, prv, times, _, _ = _layout.row_views(state, table)
+        head = np.empty_like(self.head)
+        _grid.build_lists(table[:, _layout.CELL], head, nxt, prv)
+        # (The queue times are passed twice, as the loop does.)
+        _queue.build(self.time, times, times, table, hv, qhead, qs, qf)
+        model = None if self.model is None else self.model.permuted(perm)
+        vars(self).update(self.tables(state, table, hv, qhead, qs, qf),
+                          mass=self.mass[perm], order=self.order[perm],
+                          image=self.image[perm], head=head, model=model,
+                          since_reorder=0)
+
+    def predict_all(self) -> None:
+        self.run(math.inf, 0, 0, np.array([self.time]), np.full(2, -1, np.int64),
+                 _layout.PREDICT_ALL)
+
+    # ------------------------------------------------------------------ advancing
+    def advance(self, t_end: float, max_coll: int, until_given: bool, progress) -> None:
+        """Run to ``t_end`` (``inf``: none) or ``max_coll`` further collisions (checked),
+        with a progress bar if asked; raise what the run's end calls for.
+
+        Raises
+        ------
+        ValueError
+            For a run the float64 clock cannot resolve, or one past the time the
+            largest growing disk fills the box (the state is left unchanged).
+        RuntimeError
+            For an engine error, no further event when collisions were asked for, or
+            a growing disk filling the box (the state stands where the run stopped).
+        """
+        self.check_clock_resolves_crossings(t_end)
+        outgrown = math.inf
+        if self.growth is not None:
+            outgrown = self.time_of_diameter(self.outgrow_diameter())
+            if t_end > outgrown and until_given:
+                raise ValueError(
+                    f"until={t_end} is past t={outgrown:.17g}, when the largest disk "
+                    f"grows as wide as the box ({min(self.box.size):.6g}); the "
+                    f"simulation is left at t={self.time}")
+            t_end = min(t_end, outgrown)
+        by_time = until_given
+        bar, owned = _progress.bar(
+            progress, total=(t_end - self.time) if by_time else max_coll,
+            unit="time" if by_time else "coll", desc="advance")
+        try:
+            try:
+                status, info, remaining = self.run_chunks(t_end, max_coll, bar, by_time)
+            finally:
+                self.drain()  # (also on an error: the events up to it)
+            if bar is not None and by_time and status in (_layout.REACHED_TIME,
+                                                          _layout.NO_EVENTS):
+                bar.update(t_end - self.time)  # (the flight after the last event)
+        finally:
+            if owned:
+                bar.close()
+        if status in (_layout.REACHED_TIME, _layout.NO_EVENTS) and until_given:
+            self.time = t_end
+            return
+        if status == _layout.REACHED_COLLISIONS:
+            return
+        if (self.growth is not None and t_end == outgrown
+                and status in (_layout.REACHED_TIME, _layout.NO_EVENTS)):
+            self.time = t_end
+            raise RuntimeError(
+                f"the largest disk grew as wide as the box at t={t_end} before "
+                f"{remaining} of the {max_coll} requested collisions; the simulation "
+                f"stands at that time")
+        if status == _layout.NO_EVENTS:
+            raise RuntimeError(
+                f"no further event can ever happen (t={self.time}): "
+                f"{remaining} of the {max_coll} requested collisions cannot occur"
+            )
+        raise self.engine_error(status, int(info[0]), int(info[1]))
+
+    def run_chunks(self, t_end, max_coll, bar, by_time):
+        """The engine calls of :meth:`advance`: ``(status, info, remaining)``, the final
+        status, the disks it names and the collisions still to go.  With a progress bar
+        the calls are shorter (``_PROGRESS_EVENTS``) and the bar is updated after
+        each."""
+        remaining = max_coll
+        out = np.array([self.time])
+        info = np.full(2, -1, np.int64)  # (the disks an engine error names)
+        same = 0  # events in a row at the present time, over the calls so far
+        limit = self.wedged_limit()
+        chunk = _CHUNK_EVENTS if bar is None else _PROGRESS_EVENTS
+        clock = _time.perf_counter()
+        while True:
+            before = int(self.counts[_layout.C_COLLISIONS])
+            events_before = self.events()
+            shown = self.time
+            budget = min(chunk, self.reorder_every - self.since_reorder)
+            t_run = t_end  # (under growth: no later than the grid holds)
+            if self.growth is not None:
+                t_run = min(t_end, self.time_of_diameter(self.grid_dmax))
+            try:
+                status = self.run(t_run, remaining, budget, out, info, _layout.RUN_EVENTS)
+            finally:
+                # Also when Ctrl-C arrives as the engine returns: the clock must follow
+                # the events the engine has processed, or positions would be read at a
+                # time earlier than the disks' own.
+                self.time = float(out[0])
+                events = self.events() - events_before
+                self.since_reorder += events
+            done = int(self.counts[_layout.C_COLLISIONS]) - before
+            remaining -= done
+            # Disks wedged with no room to move (a ring of touching disks around a
+            # periodic axis, a disk between a wall and a peg) collide forever at one
+            # instant, the clock standing still: count the events of the calls that did
+            # not move it (here, between calls, it costs the event loop nothing).
+            if self.time == shown:
+                same += events
+                if same >= limit:
+                    i = int(np.argmin(self.qt))  # (the next event: one of the wedged)
+                    kind = _layout.kind_of(int(self.E[i, _layout.KIND]))
+                    info[0] = i
+                    info[1] = (-1 - int(self.E[i, _layout.AUX]) if kind == _layout.BOX
+                               else int(self.E[i, _layout.PARTNER]))
+                    return _layout.ERR_WEDGED, info, remaining
+            else:
+                same = 0
+            if bar is not None:
+                now = _time.perf_counter()
+                if by_time:
+                    bar.update(self.time - shown)
+                    rate = (max_coll - remaining) / max(now - clock, 1e-9)
+                    bar.set_postfix_str(f"{rate:.3g} coll/s", refresh=False)
+                else:  # (tqdm shows the rate of its own unit, collisions)
+                    bar.update(done)
+            if status == _layout.NEED_RANDOM:
+                self.model.refill()
+                continue
+            if status == _layout.LOG_FULL:
+                self.drain()
+                continue
+            if t_run < t_end and status in (_layout.REACHED_TIME, _layout.NO_EVENTS):
+                # The disks have grown as large as the grid's cells allow: rebuild it.
+                self.time = t_run
+                out[0] = t_run
+                self.regrid()
+                continue
+            if status != _layout.REACHED_EVENT_LIMIT:
+                # (No reordering here: an error below names disks by internal index.)
+                return status, info, remaining
+            if self.since_reorder >= self.reorder_every:
+                self.reorder()
+
+    def events(self) -> int:
+        """All processed events: collisions, wall contacts, cell crossings, redraws."""
+        c = self.counts
+        return (int(c[_layout.C_COLLISIONS]) + int(c[_layout.C_WALL])
+                + int(c[_layout.C_CROSSINGS]) + int(c[_layout.C_KICKS]))
+
+    def check_clock_resolves_crossings(self, t_end: float) -> None:
+        """Refuse a run to ``t_end`` at whose end the float64 clock could no longer
+        tell a disk's successive cell crossings, or the thermostat's redraws, apart
+        (they are events: the clock would stop, and the run never end), and speeds
+        whose product with the box's size the contact times cannot square."""
+        horizon = max(abs(self.time), abs(t_end) if math.isfinite(t_end) else 0.0)
+        vel = self.velocities()
+        v = float(np.hypot(vel[:, 0], vel[:, 1]).max())
+        if self.gravity is not None:
+            # The fastest a disk can become: gravity's work over the box, if every axis
+            # it acts along is walled (energy is conserved or lost), else its push for
+            # the whole run.
+            g = float(np.hypot(*self.gravity))
+            along_periodic = any(p and gk != 0.0 for p, gk in
+                                 zip(self.box.periodic, self.gravity))
+            if along_periodic:
+                if math.isfinite(t_end):
+                    v += g * (t_end - self.time)
+            else:
+                v = math.sqrt(v * v + 2.0 * g * math.hypot(*self.box.size))
+        if self.model is not None and self.model.thermo[1] > 0.0:
+            interval = 1.0 / float(self.model.thermo[1])  # (mean time between redraws)
+            if interval <= 64.0 * np.spacing(horizon):
+                raise ValueError(
+                    f"the thermostat redraws a velocity every {interval:.3g} on average, "
+                    f"which the float64 clock cannot resolve at t={horizon:.6g} (its "
+                    f"resolution there is {np.spacing(horizon):.3g}): the run could not "
+                    "advance.  Use a smaller thermostat rate.")
+        side = float(min(self.gf[2], self.gf[3]))
+        if v > 0.0 and side / v <= 64.0 * np.spacing(horizon):
+            raise ValueError(
+                f"a disk at speed {v:.3g} crosses a grid cell (side {side:.3g}) "
+                f"in {side / v:.3g}, which the float64 clock cannot resolve at "
+                f"t={horizon:.6g} (its resolution there is {np.spacing(horizon):.3g}): "
+                "the run could not advance.  Use smaller speeds (a slower unit of time) "
+                "or a shorter run."
+            )
+        extent = max(self.box.size)
+        if v * extent > MAX_LENGTH:
+            raise ValueError(
+                f"a disk at speed {v:.3g} in a box of side {extent:.3g}: the product, "
+                f"{v * extent:.3g}, must be at most {MAX_LENGTH:g} (the contact times "
+                "square it).  Use smaller speeds (a slower unit of time).")
+
+    def wedged_limit(self) -> int:
+        """The events in a row at one time after which disks count as wedged."""
+        return max(_WEDGED_EVENTS_PER_DISK * len(self), _WEDGED_EVENTS_MIN)
+
+    def engine_error(self, status: int, i: int, j: int) -> RuntimeError:
+        """The exception for an error status of the engine, which stopped before the
+        event of internal disk ``i`` with ``j`` (a disk, a wall segment ``>= 0``, or
+        ``-1 - side`` for a box wall, as the event's kind says)."""
+        t_bad = float(self.qt[i])
+        user_i = int(self.order[i])
+        stopped = f"The simulation stopped at t={self.time}."
+        if status == _layout.ERR_IMMOVABLE_PAIR:
+            return RuntimeError(
+                f"immovable disks {user_i} and {int(self.order[j])} (mass=inf) meet at "
+                f"t={t_bad}: two immovable bodies cannot collide. {stopped}"
+            )
+        where = (f"walls[{j}]" if j >= 0
+                 else f"the box wall at {BOX_WALL_EQUATIONS[-1 - j]}")
+        if status == _layout.ERR_IMMOVABLE_WALL:
+            return RuntimeError(
+                f"immovable disk {user_i} (mass=inf) reaches {where} at t={t_bad}: an "
+                f"immovable disk cannot bounce. {stopped}"
+            )
+        if status == _layout.ERR_STALLED:
+            kind = _layout.kind_of(int(self.E[i, _layout.KIND]))
+            partner = f"disk {int(self.order[j])}" if kind == _layout.DISK else where
+            streak = self.model.streak
+            involved = np.sort(self.order[streak >= streak.max() // 10])
+            if self.gravity is not None:
+                advice = ("Under gravity this is a disk at rest on another disk, a peg or "
+                          "a segment, which no tc ends: only box walls hold disks at "
+                          "rest (see docs/gravity-and-heat.md).")
+            elif self.model.tc > 0.0:
+                advice = (f"The TC model (tc={self.model.tc}) did not end it: a larger tc "
+                          "would, unless the disks are confined with no room to move.")
+            else:
+                advice = "Use the TC model (tc > 0) to end the collapse."
+            return RuntimeError(
+                f"inelastic collapse at t={t_bad}: disk {user_i} and {partner} would "
+                f"collide again at the same time, after {_models.STALL_COLLISIONS} "
+                f"collisions in a row that took no time (disks involved: "
+                f"{indices_where(np.isin(np.arange(len(self)), involved))}); the run would "
+                f"need unboundedly many events. {advice} {stopped}"
+            )
+        if status == _layout.ERR_WEDGED:
+            kind = _layout.kind_of(int(self.E[i, _layout.KIND]))
+            other = (f"disk {int(self.order[j])}" if kind == _layout.DISK else
+                     where if kind in (_layout.SEGMENT, _layout.BOX) else
+                     "a grid cell's edge" if kind == _layout.CROSS else "a redraw")
+            return RuntimeError(
+                f"disks wedged at t={self.time}: {self.wedged_limit()} or more events in "
+                f"a row at this one time, the next of disk {user_i} with {other}, and the "
+                "clock cannot advance: "
+                "disks that touch with no room to move (a ring of touching disks around a "
+                "periodic axis, a disk between a wall and a peg or between two walls) "
+                "collide forever at one instant.  Give them room (a larger box, smaller "
+                "or fewer disks) or set velocities that do not drive them into each "
+                f"other. {stopped}"
+            )
+        return RuntimeError(f"internal error: engine returned status {status}")  # pragma: no cover

@@ -118,38 +118,39 @@ def test_files_that_are_not_checkpoints_are_refused(tmp_path):
         checkpoint.load(tmp_path / "other.zip")
 
 
-def test_another_format_version_is_refused(tmp_path):
+def _with_header(tmp_path, name, edit):
+    """A checkpoint of a small gas whose header ``edit`` changed, written to ``name``."""
     path = tmp_path / "run.edmd2d"
     checkpoint.save(ed.make_gas(50, 0.3, seed=seed_of(1)), path)
     with zipfile.ZipFile(path) as z:
-        members = {name: z.read(name) for name in z.namelist()}
+        members = {member: z.read(member) for member in z.namelist()}
     header = json.loads(members["header.json"])
-    header["version"] = checkpoint.VERSION + 1
+    edit(header)
     members["header.json"] = json.dumps(header).encode()
-    with zipfile.ZipFile(tmp_path / "future", "w") as z:
-        for name, data in members.items():
-            z.writestr(name, data)
+    with zipfile.ZipFile(tmp_path / name, "w") as z:
+        for member, data in members.items():
+            z.writestr(member, data)
+    return tmp_path / name
+
+
+def test_another_format_version_is_refused(tmp_path):
+    future = _with_header(tmp_path, "future",
+                          lambda header: header.update(version=checkpoint.VERSION + 1))
     with pytest.raises(ValueError, match=f"format version {checkpoint.VERSION + 1}"):
-        checkpoint.load(tmp_path / "future")
+        checkpoint.load(future)
 
 
 def test_a_checkpoint_of_format_version_1_is_refused(tmp_path):
     # Version 1 held the attributes of the Simulation itself; version 2 the engine's
     # state: the old files are refused with a message that names their version.
-    path = tmp_path / "run.edmd2d"
-    checkpoint.save(ed.make_gas(50, 0.3, seed=seed_of(1)), path)
-    with zipfile.ZipFile(path) as z:
-        members = {name: z.read(name) for name in z.namelist()}
-    header = json.loads(members["header.json"])
-    header["version"] = 1
-    header["state"] = {"_" + key: value for key, value in header["state"].items()}
-    members["header.json"] = json.dumps(header).encode()
-    with zipfile.ZipFile(tmp_path / "old", "w") as z:
-        for name, data in members.items():
-            z.writestr(name, data)
+    def to_version_1(header):
+        header["version"] = 1
+        header["state"] = {"_" + key: value for key, value in header["state"].items()}
+
+    old = _with_header(tmp_path, "old", to_version_1)
     assert checkpoint.VERSION == 2
     with pytest.raises(ValueError, match="format version 1 .*reads version 2"):
-        checkpoint.load(tmp_path / "old")
+        checkpoint.load(old)
 
 
 def test_parts_of_two_checkpoints_do_not_make_one(tmp_path):

@@ -28,7 +28,7 @@ from ._validate import (
     refusal,
 )
 from .contacts import _segment_distance
-from .geometry import Box, Wall
+from .geometry import Box, as_walls
 from .simulation import Simulation
 
 __all__ = ["make_gas", "lattice_packing_limit", "random_packing", "random_gas",
@@ -179,7 +179,7 @@ def make_gas(
     if (mass <= 0).any():
         raise refusal(ValueError, "masses",
                       f"masses must be > 0; disks {indices_where(mass <= 0)} are not")
-    segs = _as_wall_list(walls)
+    segs = as_walls(walls)
     rng = as_generator("seed", seed)
 
     box = _box_for(float(np.pi * np.sum(rad**2)), phi, aspect, periodic)
@@ -434,7 +434,7 @@ def random_gas(
     1.0
     """
     temperature = as_positive_float("temperature", temperature, allow_zero=True)
-    segs = _as_wall_list(walls)
+    segs = as_walls(walls)
     rng = as_generator("seed", seed)
     pos, rad, box = random_packing(n, packing_fraction, radius=radius, radii=radii,
                                    aspect=aspect, periodic=periodic, seed=rng)
@@ -478,26 +478,6 @@ def clear_of_walls(positions: np.ndarray, radii: np.ndarray, walls, box: Box) ->
         dist = _segment_distance(positions, np.asarray(w.start), np.asarray(w.end), box)
         keep &= dist > radii * (1.0 + _GAP)
     return keep
-
-
-def _as_wall_list(walls) -> list:
-    """``walls`` as a list of Wall segments (``None``: none)."""
-    if walls is None:
-        return []
-    if isinstance(walls, Wall):
-        return [walls]
-    if isinstance(walls, (str, bytes, np.ndarray)) or not hasattr(walls, "__iter__"):
-        raise refusal(TypeError, "walls",
-                      f"walls must be an edmd2d.Wall or a sequence of them, got "
-                      f"{type(walls).__name__}; for a polygon pass "
-                      "walls=edmd2d.Wall.polygon(vertices)")
-    items = list(walls)
-    for k, w in enumerate(items):
-        if not isinstance(w, Wall):
-            raise refusal(TypeError, "walls",
-                          f"walls[{k}] must be an edmd2d.Wall, got {type(w).__name__} "
-                          f"({w!r}); for a polygon pass walls=edmd2d.Wall.polygon(vertices)")
-    return items
 
 
 def _check_walls_in(segs, box: Box, caller: str) -> None:

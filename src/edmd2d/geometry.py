@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._sums import dot
-from ._validate import as_float_array, as_positive_float
+from ._validate import as_float_array, as_positive_float, refusal
 
 __all__ = ["Box", "Wall", "BOX_WALLS", "BOX_WALL_EQUATIONS", "container"]
 
@@ -177,19 +177,23 @@ class Wall:
 
 
 def as_walls(walls) -> list[Wall]:
-    """A ``walls`` argument as a list: ``None`` (none), one :class:`Wall` or an iterable
-    of them; ``TypeError`` naming what else was given."""
+    """A ``walls`` argument as a list: ``None`` (none), one :class:`Wall` or a sequence
+    of them; ``TypeError`` about ``walls`` naming what else was given."""
     if walls is None:
         return []
     if isinstance(walls, Wall):
         return [walls]
-    try:
-        items = list(walls)
-    except TypeError:
-        raise TypeError(f"walls must be an iterable of edmd2d.Wall, got {walls!r}") from None
+    if isinstance(walls, (str, bytes, np.ndarray)) or not hasattr(walls, "__iter__"):
+        raise refusal(TypeError, "walls",
+                      f"walls must be an edmd2d.Wall or a sequence of them, got "
+                      f"{type(walls).__name__}; for a polygon pass "
+                      "walls=edmd2d.Wall.polygon(vertices)")
+    items = list(walls)
     for k, w in enumerate(items):
         if not isinstance(w, Wall):
-            raise TypeError(f"walls[{k}] must be an edmd2d.Wall, got {type(w).__name__}")
+            raise refusal(TypeError, "walls",
+                          f"walls[{k}] must be an edmd2d.Wall, got {type(w).__name__} "
+                          f"({w!r}); for a polygon pass walls=edmd2d.Wall.polygon(vertices)")
     return items
 
 

@@ -322,9 +322,9 @@ def test_an_interrupted_run_leaves_a_checkpoint_to_resume(tmp_path, capsys, monk
     assert run(["run", config_path, "-o", tmp_path / "whole", "--no-progress"]) == 0
     row = cli._Runner._row
 
-    def interrupted(self, sim):
-        row(self, sim)
-        if self.measure.blocks == 2:
+    def interrupted(self, sim, measure):
+        row(self, sim, measure)
+        if measure.blocks == 2:
             raise KeyboardInterrupt
 
     monkeypatch.setattr(cli._Runner, "_row", interrupted)

@@ -356,3 +356,13 @@ def test_sweep_help(capsys):
         assert word in out
     assert main(["sweep", "x.toml", "--workers", "0"]) == 2
     assert "must be >= 1" in capsys.readouterr().err
+
+
+def test_eos_task_refuses_a_checkpoint_of_another_version(tmp_path):
+    parameters = {"n": 40, "packing_fraction": 0.2, "duration": 0.5, "blocks": 1}
+    ensemble.eos_task(parameters, 3, tmp_path)
+    path = tmp_path / "checkpoint.edmd2d"
+    meta = checkpoint.read_metadata(path)
+    checkpoint.save(checkpoint.load(path), path, metadata={**meta, "version": 1})
+    with pytest.raises(ValueError, match="format version 1"):
+        ensemble.eos_task(parameters, 3, tmp_path)

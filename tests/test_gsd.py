@@ -204,3 +204,24 @@ def test_gsd_frames_give_the_same_g_of_r_in_freud_and_edmd2d(tmp_path):
     # by float32 changes it by ~1e-4.
     np.testing.assert_allclose(g_file, g_exact, atol=2e-3)
     assert g_exact.max() > 2.0  # (the contact peak of a dense fluid)
+
+
+def test_describe_and_copy_until(tmp_path):
+    radii = np.where(np.arange(30) < 20, 0.5, 0.3)
+    sim = ed.make_gas(30, 0.3, radii=radii, seed=seed_of(3))
+    path = tmp_path / "gas.gsd"
+    gsd.record(sim, path, times=[0.0, 0.5, 1.0, 1.5])
+    info = gsd.describe(path)
+    assert info["frames"] == 4 and info["times"] == (0.0, 1.5) and info["n"] == 30
+    assert sorted(s["count"] for s in info["species"]) == list(
+        np.unique(sim.species, return_counts=True)[1])
+    assert info["periodic"] == (True, True) and info["walls"] == 0
+    assert info["collisions"] == sim.counts.collisions
+    # The frames up to a time, into another file or in place.
+    gsd.copy_until(path, tmp_path / "cut.gsd", 1.0)
+    assert gsd.describe(tmp_path / "cut.gsd")["times"] == (0.0, 1.0)
+    gsd.copy_until(path, path, 0.7)
+    assert gsd.describe(path)["frames"] == 2
+    (tmp_path / "text.gsd").write_text("not a GSD file\n")
+    with pytest.raises(ValueError, match="not a GSD file"):
+        gsd.describe(tmp_path / "text.gsd")

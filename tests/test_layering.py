@@ -30,7 +30,7 @@ LAYERS = [
     {"analysis", "compress", "checkpoint", "io"},
     {"contacts"},
     {"builders"},
-    {"operations", "viz", "config"},
+    {"operations", "viz", "config", "_runs"},
     {"ensemble"},
     {"cli", "__main__", "__init__"},
 ]

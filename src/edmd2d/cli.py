@@ -2,13 +2,14 @@
 
 ``edmd2d run CONFIG.toml`` builds the system a TOML configuration describes (see
 :mod:`edmd2d.config` and ``examples/gas.toml``), runs it through its equilibration and
-its measurement window in one :meth:`~edmd2d.Simulation.run`, and writes into an output
-directory:
+its measurement window (the protocol that the sweep's task,
+:func:`edmd2d.ensemble.eos_task`, follows too), and writes into an output directory:
 
 - ``config.toml``, a copy of the configuration;
 - ``trajectory.gsd``, a GSD frame every ``gsd_every`` (with ``[output] gsd_every``);
 - ``checkpoint.edmd2d``, a checkpoint every ``checkpoint_every`` of simulated time
-  and/or ``checkpoint_minutes`` of wall-clock time, and always at the end, holding in
+  and/or ``checkpoint_minutes`` of wall-clock time, and always at the end of the
+  equilibration and of the run, holding in
   its metadata the configuration, the seed, the end time and the state of the
   measurement, so that ``edmd2d resume`` can go on from it;
 - ``results.json``: the measured values with their error bars, the table, the
@@ -54,9 +55,10 @@ import numpy as np
 from . import _atomic, ensemble
 from . import checkpoint as _checkpoint
 from . import config as _config
-from . import operations as _op
 from . import progress as _progress
+from ._runs import DONE, FAILED, INTERRUPTED, RunProtocol
 from ._version import __version__
+from .io import gsd as _gsd
 
 __all__ = ["main", "UserError", "CONFIG_FILE", "GSD_FILE", "CHECKPOINT_FILE",
            "RESULTS_FILE"]
@@ -71,7 +73,7 @@ CHECKPOINT_FILE = "checkpoint.edmd2d"
 RESULTS_FILE = "results.json"
 # The kind of metadata `edmd2d run` puts in its checkpoints, and its version.
 _RUN_FORMAT = "edmd2d-run"
-_RUN_VERSION = 1
+_RUN_VERSION = 2
 
 
 class UserError(Exception):
@@ -249,24 +251,20 @@ def _cmd_run(args) -> int:
     _make_dir(out)
     (out / CONFIG_FILE).write_text(cfg.text, encoding="utf-8")
     run = cfg.data["run"]
-    t0 = sim.time
-    meta = {
+    meta = RunProtocol.start(sim, {
         "format": _RUN_FORMAT, "version": _RUN_VERSION, "edmd2d": __version__,
         "config": cfg.data, "config_file": str(args.config), "seed": seed,
-        "removed_disks": removed, "t_start": t0,
-        "window": {"start": t0 + run["equilibrate"], "duration": run["duration"],
-                   "blocks": run["blocks"]},
-        "end": t0 + run["equilibrate"] + run["duration"],
-        "measure": None, "rows": [], "wall_seconds": 0.0,
-    }
+        "removed_disks": removed, "rows": [], "wall_seconds": 0.0}, run)
+    meta["end"] = meta["window_start"] + run["duration"]
     if removed:
         _say(f"{removed} disks of the lattice start crossed wall segments and were left "
              f"out: {len(sim)} disks")
     until = meta["end"]
     if args.until is not None:
-        if not t0 < args.until <= meta["end"]:
-            raise UserError(f"--until {args.until:g} must lie after the start (t={t0:g}) and "
-                            f"not after the run's end (t={meta['end']:g})")
+        if not sim.time < args.until <= meta["end"]:
+            raise UserError(f"--until {args.until:g} must lie after the start "
+                            f"(t={sim.time:g}) and not after the run's end "
+                            f"(t={meta['end']:g})")
         until = args.until
     return _Runner(sim, meta, out, progress=not args.no_progress,
                    resumed=False).execute(until)
@@ -306,14 +304,16 @@ def _cmd_resume(args) -> int:
             shutil.copyfile(source, out / CONFIG_FILE)
     if meta["config"]["output"]["gsd_every"] is not None:
         _need_gsd("resuming a run with a GSD trajectory")
-        _continue_gsd(path.parent / GSD_FILE, out / GSD_FILE, sim.time)
+        source = path.parent / GSD_FILE
+        if source.exists():
+            _gsd.copy_until(source, out / GSD_FILE, sim.time)
     return _Runner(sim, meta, out, progress=not args.no_progress,
                    resumed=True).execute(meta["end"])
 
 
 class _Runner:
-    """One run of ``edmd2d run`` or ``edmd2d resume``: the operations, the table and
-    the files."""
+    """One run of ``edmd2d run`` or ``edmd2d resume``: the table and the files around
+    the run protocol."""
 
     def __init__(self, sim, meta: dict, out: Path, *, progress: bool, resumed: bool):
         self.sim, self.meta, self.out = sim, meta, out
@@ -322,64 +322,34 @@ class _Runner:
         self.clock = _time.perf_counter()
         self.wall0 = meta["wall_seconds"]
         self.last_row = (self.clock, sim.counts.collisions)
+        config = meta["config"]
+        self.protocol = RunProtocol(
+            sim, meta, out / CHECKPOINT_FILE, run=config["run"], output=config["output"],
+            gsd=out / GSD_FILE, resumed=resumed, on_block=self._row,
+            annotate=self._annotate)
 
     def execute(self, until: float) -> int:
-        sim, meta, out = self.sim, self.meta, self.out
-        window = meta["window"]
-        count = _blocks_until(window, until)
-        if meta["measure"] is None:
-            self.measure = _op.Measure(_op.Blocks(window["duration"], window["blocks"],
-                                                  start=window["start"], count=count))
-        else:
-            self.measure = _op.Measure.from_state(meta["measure"], count=count)
-        rows = _op.Callback(self._row, _op.Blocks(window["duration"], window["blocks"],
-                                                  start=window["start"], count=count))
-        operations = [self.measure, rows]
-        settings = meta["config"]["output"]
-        if settings["gsd_every"] is not None:
-            gsd = _op.WriteGSD(out / GSD_FILE,
-                               _op.Every(dt=settings["gsd_every"], start=meta["t_start"]),
-                               mode="a" if self.resumed else "w")
-            if not self.resumed:
-                gsd(sim)  # (the first frame: the start)
-            operations.append(gsd)
-        path = out / CHECKPOINT_FILE
-        if settings["checkpoint_every"] is not None:
-            operations.append(_op.Checkpoint(
-                path, _op.Every(dt=settings["checkpoint_every"], start=meta["t_start"]),
-                metadata=self._metadata))
-        if settings["checkpoint_minutes"] is not None:
-            operations.append(_op.Checkpoint(
-                path, _op.Every(seconds=60.0 * settings["checkpoint_minutes"]),
-                metadata=self._metadata))
+        sim, meta = self.sim, self.meta
         self._print_head(until)
-        status = "complete" if until >= meta["end"] else "stopped"
+        if self.progress:
+            self.bar, _ = _progress.bar(True, total=until - sim.time, unit="time",
+                                        desc="edmd2d")
+        self.last_row = (_time.perf_counter(), sim.counts.collisions)
         try:
-            if self.progress:
-                self.bar, _ = _progress.bar(True, total=until - sim.time, unit="time",
-                                            desc="edmd2d")
-            self.last_row = (_time.perf_counter(), sim.counts.collisions)
-            try:
-                sim.run(until=until, operations=operations, progress=self.bar or False)
-            finally:
-                if self.bar is not None:
-                    self.bar.close()
-                    self.bar = None
-        except KeyboardInterrupt:
-            status = "interrupted"
-        except RuntimeError as exc:
-            # (The simulation stands at the last event before the problem: keep it and
-            # what was measured up to it.)
-            status = "failed"
-            meta["failure"] = {"time": sim.time, "error": str(exc)}
-        _checkpoint.save(sim, path, metadata=self._metadata(sim))
+            status = self.protocol.execute(until, progress=self.bar or False)
+        finally:
+            if self.bar is not None:
+                self.bar.close()
+                self.bar = None
+        if status == DONE:
+            status = "complete" if until >= meta["end"] else "stopped"
         results = self._results(status)
-        _write_json(out / RESULTS_FILE, results)
-        self._print_tail(results, path)
-        if status == "failed":
+        _write_json(self.out / RESULTS_FILE, results)
+        self._print_tail(results, self.protocol.path)
+        if status == FAILED:
             _say(f"edmd2d: the simulation failed: {meta['failure']['error']}", sys.stderr)
             return 1
-        return 130 if status == "interrupted" else 0
+        return 130 if status == INTERRUPTED else 0
 
     # -------------------------------------------------------------- the table
     def _print(self, line: str) -> None:
@@ -393,23 +363,23 @@ class _Runner:
 
     def _print_head(self, until: float) -> None:
         meta, sim = self.meta, self.sim
-        w = meta["window"]
-        end = w["start"] + w["duration"]
+        run = meta["config"]["run"]
         what = "resuming" if self.resumed else "running"
         self._print(f"{what} {len(sim)} disks from t={sim.time:g} to t={until:g}; measuring "
-                    f"t={w['start']:g}..{end:g} in {w['blocks']} blocks (seed {meta['seed']})")
+                    f"t={meta['window_start']:g}..{self.protocol.window_end:g} in "
+                    f"{run['blocks']} blocks (seed {meta['seed']})")
         self._print("each row: the window so far, mean +- standard error over its blocks")
         self._print(_ROW_HEAD)
         for row in meta["rows"]:
             self._print(_row_text(row) + ("   (before the checkpoint)" if self.resumed
                                           else ""))
 
-    def _row(self, sim) -> None:
+    def _row(self, sim, measure) -> None:
         now = _time.perf_counter()
-        if self.measure.blocks == 0:  # (the window opens)
+        if measure.blocks == 0:  # (the window opens)
             self.last_row = (now, sim.counts.collisions)
             return
-        m = self.measure.result()
+        m = measure.result()
         then, collisions = self.last_row
         rate = (sim.counts.collisions - collisions) / max(now - then, 1e-9)
         self.last_row = (now, sim.counts.collisions)
@@ -423,38 +393,37 @@ class _Runner:
     def _print_tail(self, results: dict, path: Path) -> None:
         sim = self.sim
         status = results["status"]
-        if self.measure.blocks:
-            _say(self.measure.result().summary())
+        measurement = self.protocol.result()
+        if measurement is not None:
+            _say(measurement.summary())
         if status == "complete":
             _say(f"done at t={sim.time:g}: {sim.counts.collisions} collisions; results in "
                  f"{self.out / RESULTS_FILE}")
-        elif status == "failed":
+        elif status == FAILED:
             _say(f"failed at t={sim.time:g}: what was measured before is in "
                  f"{self.out / RESULTS_FILE} (status 'failed'), the state before the "
                  f"failure in {path}", sys.stderr)
         else:
             _say(f"{status} at t={sim.time:g}; continue with: edmd2d resume {path}",
-                 sys.stderr if status == "interrupted" else sys.stdout)
+                 sys.stderr if status == INTERRUPTED else sys.stdout)
 
     # -------------------------------------------------------------- the files
-    def _metadata(self, sim) -> dict:
-        meta = dict(self.meta)
-        meta["measure"] = self.measure.state()
+    def _annotate(self, meta: dict) -> None:
         meta["wall_seconds"] = self.wall0 + (_time.perf_counter() - self.clock)
-        return meta
 
     def _results(self, status: str) -> dict:
         sim, meta = self.sim, self.meta
-        measurement = self.measure.result() if self.measure.blocks else None
-        w = meta["window"]
+        measurement = self.protocol.result()
+        run = meta["config"]["run"]
         files = {"config": CONFIG_FILE, "checkpoint": CHECKPOINT_FILE}
         if meta["config"]["output"]["gsd_every"] is not None:
             files["gsd"] = GSD_FILE
         box = sim.box
+        measure = self.protocol.measure
         return {
             "edmd2d": __version__,
             "status": status,
-            "error": (meta.get("failure") or {}).get("error") if status == "failed" else None,
+            "error": (meta.get("failure") or {}).get("error") if status == FAILED else None,
             "config_file": meta["config_file"],
             "seed": meta["seed"],
             "time": sim.time,
@@ -465,9 +434,9 @@ class _Runner:
                     "periodic": list(box.periodic)},
             "counts": dataclasses.asdict(sim.counts),
             "kinetic_energy": sim.kinetic_energy(),
-            "window": {"start": w["start"], "duration": w["duration"],
-                       "blocks": w["blocks"],
-                       "blocks_measured": self.measure.blocks},
+            "window": {"start": meta["window_start"], "duration": run["duration"],
+                       "blocks": run["blocks"],
+                       "blocks_measured": 0 if measure is None else measure.blocks},
             "measurement": None if measurement is None else _measurement_json(measurement),
             "table": meta["rows"],
             "wall_seconds": self.wall0 + (_time.perf_counter() - self.clock),
@@ -488,16 +457,6 @@ def _row_text(row: dict) -> str:
             f"{row['temperature']:>12.6f} +- {err(row['temperature_error'])} "
             f"{row['compressibility_factor']:>10.5f} +- "
             f"{err(row['compressibility_factor_error'])}")
-
-
-def _blocks_until(window: dict, until: float) -> int:
-    """How many blocks of the window end by ``until``: the window's own, or more of
-    the same length when the run goes on past it."""
-    trigger = _op.Blocks(window["duration"], window["blocks"], start=window["start"])
-    count = window["blocks"]
-    while trigger.edge(count + 1) <= until:
-        count += 1
-    return count
 
 
 def _measurement_json(m) -> dict:
@@ -556,20 +515,6 @@ def _need_gsd(what: str) -> None:
     except ImportError:
         raise UserError(f"{what} needs the gsd package (a dependency of edmd2d): "
                         "pip install gsd") from None
-
-
-def _continue_gsd(source: Path, target: Path, time: float) -> None:
-    """Make ``target`` hold the frames of ``source`` up to ``time`` (those a resumed
-    run continues from; later ones were written after the checkpoint)."""
-    import gsd.hoomd
-
-    if not source.exists():
-        return
-    with (_atomic.replacing_path(target) as tmp, gsd.hoomd.open(str(source), "r") as old,
-          gsd.hoomd.open(tmp, "w") as new):
-        for frame in old:
-            if float(frame.log["edmd2d/time"][0]) <= time:
-                new.append(frame)
 
 
 def _read_checkpoint_metadata(path: Path) -> dict:
@@ -675,8 +620,9 @@ def _species_text(species: np.ndarray, radii: np.ndarray, masses: np.ndarray) ->
     parts = []
     for s in np.unique(species):
         sel = species == s
-        r, m = np.unique(radii[sel]), np.unique(masses[sel])
-        parts.append(f"{int(s)}: {int(sel.sum())} (radius {_values(r)}, mass {_values(m)})")
+        r, m = radii[sel], masses[sel]
+        parts.append(f"{int(s)}: {int(sel.sum())} (radius {_values((r.min(), r.max()))}, "
+                     f"mass {_values((m.min(), m.max()))})")
     return "; ".join(parts)
 
 
@@ -684,8 +630,9 @@ def _segments(k: int) -> str:
     return f"{k} segment" + ("" if k == 1 else "s")
 
 
-def _values(v: np.ndarray) -> str:
-    return f"{v[0]:g}" if len(v) == 1 else f"{v.min():g}-{v.max():g}"
+def _values(span: tuple) -> str:
+    lo, hi = span
+    return f"{lo:g}" if lo == hi else f"{lo:g}-{hi:g}"
 
 
 def _box_text(width: float, height: float, periodic) -> str:
@@ -723,54 +670,38 @@ def _checkpoint_info(path: Path) -> str:
                    f"{c.events} events"),
         ("energy", f"kinetic {sim.kinetic_energy():.10g}"),
     ]
-    if meta.get("format") == _RUN_FORMAT:
-        w = meta["window"]
-        done = 0 if meta.get("measure") is None else max(len(meta["measure"]["edges"]) - 1, 0)
+    if meta.get("format") == _RUN_FORMAT and meta.get("version") == _RUN_VERSION:
+        run = meta["config"]["run"]
+        done = 0 if meta["measure"] is None else max(len(meta["measure"]["edges"]) - 1, 0)
+        start = meta["window_start"]
         lines += [
             ("run", f"of {meta['config_file']}, seed {meta['seed']}, to t={meta['end']:g}"),
-            ("measured", f"{done} of {w['blocks']} blocks of t={w['start']:g}.."
-                         f"{w['start'] + w['duration']:g}"),
+            ("measured", f"{done} of {run['blocks']} blocks of t={start:g}.."
+                         f"{start + run['duration']:g}"),
         ]
     return f"{path}: edmd2d checkpoint\n" + _describe(lines)
 
 
 def _gsd_info(path: Path) -> str:
     _need_gsd("reading a GSD file")
-    import gsd.hoomd
-
     try:
-        traj = gsd.hoomd.open(str(path), "r")
-    except Exception as exc:  # (gsd raises several kinds for a file that is not GSD)
+        info = _gsd.describe(path)
+    except ValueError as exc:
         raise UserError(f"{path} is neither a GSD file nor an edmd2d checkpoint ({exc})"
                         ) from None
-    with traj:
-        frames = len(traj)
-        if frames == 0:
-            return f"{path}: GSD file, no frames"
-        first, last = traj[0], traj[frames - 1]
-    lines = [("frames", f"{frames}")]
-    log = {k: np.asarray(v) for k, v in last.log.items()}
-    t_first = first.log.get("edmd2d/time")
-    if t_first is not None and "edmd2d/time" in log:
-        lines.append(("time", f"{float(np.asarray(t_first)[0]):.10g} .. "
-                              f"{float(log['edmd2d/time'][0]):.10g}"))
-    p = last.particles
-    lines.append(("disks", f"{p.N}"))
-    lx, ly = (float(v) for v in last.configuration.box[:2])
-    periodic = tuple(bool(v) for v in log.get("edmd2d/periodic", np.array([1, 1])))
-    lines.append(("box", _box_text(lx, ly, periodic)))
-    typeid = (np.zeros(p.N, int) if p.typeid is None else np.asarray(p.typeid))
-    diameter = np.ones(p.N) if p.diameter is None else np.asarray(p.diameter, float)
-    mass = np.ones(p.N) if p.mass is None else np.asarray(p.mass, float)
-    types = list(p.types) if p.types is not None else ["A"]
-    parts = [f"{types[t] if t < len(types) else t}: {int((typeid == t).sum())} (diameter "
-             f"{_values(np.unique(diameter[typeid == t]))}, mass "
-             f"{_values(np.unique(mass[typeid == t]))})" for t in np.unique(typeid)]
-    lines.append(("species", "; ".join(parts)))
-    walls = log.get("edmd2d/walls")
-    lines.append(("walls", _segments(0 if walls is None else len(walls.reshape(-1, 4)))))
-    if "edmd2d/collisions" in log:
-        lines.append(("collisions", f"{int(log['edmd2d/collisions'][0])} at the last frame"))
+    if info["frames"] == 0:
+        return f"{path}: GSD file, no frames"
+    lines = [("frames", f"{info['frames']}")]
+    if info["times"] is not None:
+        lines.append(("time", f"{info['times'][0]:.10g} .. {info['times'][1]:.10g}"))
+    lines.append(("disks", f"{info['n']}"))
+    lines.append(("box", _box_text(*info["box"], info["periodic"])))
+    lines.append(("species", "; ".join(
+        f"{s['name']}: {s['count']} (diameter {_values(s['diameters'])}, mass "
+        f"{_values(s['masses'])})" for s in info["species"])))
+    lines.append(("walls", _segments(info["walls"])))
+    if info["collisions"] is not None:
+        lines.append(("collisions", f"{info['collisions']} at the last frame"))
     return f"{path}: GSD file (HOOMD schema)\n" + _describe(lines)
 
 

@@ -79,8 +79,8 @@ import numpy as np
 from . import _atomic
 from . import checkpoint as _checkpoint
 from . import config as _config
-from . import operations as _op
 from . import progress as _progress
+from ._runs import FAILED, INTERRUPTED, RunProtocol
 from ._version import __version__
 from .analysis import hexatic_order
 from .builders import make_gas
@@ -105,6 +105,7 @@ _MIDDLE = ("replica", "seed_entropy", "seed_spawn_key", "status", "error_type", 
 # The checkpoint of eos_task in its workdir, and the kind of its metadata.
 _EOS_CHECKPOINT = "checkpoint.edmd2d"
 _EOS_FORMAT = "edmd2d-eos-task"
+_EOS_VERSION = 2
 
 
 # ------------------------------------------------------------------ the grid
@@ -719,7 +720,8 @@ def eos_task(parameters: dict, seed, workdir) -> dict:
     :func:`edmd2d.config.build`: ``make_gas``, or ``random_gas`` with
     ``start="random"``), run for ``equilibrate`` of simulated time or
     ``equilibrate_collisions`` collisions per disk, then measured over ``duration``
-    in ``blocks`` (an :class:`~edmd2d.operations.Measure`).  A checkpoint
+    in ``blocks`` (an :class:`~edmd2d.operations.Measure`), by the protocol that
+    ``edmd2d run`` follows too.  A checkpoint
     (:class:`~edmd2d.operations.Checkpoint`) in ``workdir`` is written at the end of
     the equilibration, at the end of each block and every ``checkpoint_every`` of
     simulated time if given; it holds the state of the measurement, and a call that
@@ -754,10 +756,13 @@ def eos_task(parameters: dict, seed, workdir) -> dict:
     edmd2d.config.ConfigError
         For parameters that cannot be used (naming the key).
     ValueError
-        If ``workdir`` holds a checkpoint of other parameters.
+        If ``workdir`` holds a checkpoint of other parameters, or of another version
+        of the task.
+    RuntimeError
+        If the simulation fails (an inelastic collapse, say); the checkpoint then
+        holds the state before the failure, and a later call raises again.
     """
     cfg = _config.task_config(parameters)
-    run, output = cfg.data["run"], cfg.data["output"]
     path = Path(workdir) / _EOS_CHECKPOINT
     given = json.loads(json.dumps(parameters, default=_json_default))
     if path.exists():
@@ -765,46 +770,27 @@ def eos_task(parameters: dict, seed, workdir) -> dict:
         if meta.get("format") != _EOS_FORMAT or meta.get("parameters") != given:
             raise ValueError(f"{path} is the checkpoint of another run (parameters "
                              f"{meta.get('parameters')}); remove it to start afresh")
+        if meta.get("version") != _EOS_VERSION:
+            raise ValueError(f"{path} holds a task of format version {meta.get('version')}; "
+                             f"this edmd2d {__version__} continues version {_EOS_VERSION} "
+                             "(remove it to start afresh)")
         sim = _checkpoint.load(path)
     else:
         sim, _ = _config.build(cfg, seed)
-        meta = {"format": _EOS_FORMAT, "version": 1, "parameters": given,
-                "window_start": None, "measure": None}
-
-    def every():
-        dt = output["checkpoint_every"]
-        return [] if dt is None else [_op.Checkpoint(path, _op.Every(dt=dt, start=0.0),
-                                                     metadata=lambda s: meta)]
-
-    if meta["window_start"] is None:
-        if run["equilibrate_collisions"] is not None:
-            left = round(run["equilibrate_collisions"] * len(sim)) - sim.counts.collisions
-            if left > 0:
-                sim.run(collisions=left, operations=every())
-        elif sim.time < run["equilibrate"]:
-            sim.run(until=run["equilibrate"], operations=every())
-        meta["window_start"] = sim.time
-        _checkpoint.save(sim, path, metadata=meta)
-    start, duration, blocks = meta["window_start"], run["duration"], run["blocks"]
-    if meta["measure"] is None:
-        measure = _op.Measure(_op.Blocks(duration, blocks, start=start))
-    else:
-        measure = _op.Measure.from_state(meta["measure"])
-
-    def with_measure(sim):
-        meta["measure"] = measure.state()
-        return meta
-
-    end = _op.Blocks(duration, blocks, start=start).edge(blocks)
-    if sim.time < end:
-        operations = [measure, _op.Checkpoint(path, _op.Blocks(duration, blocks, start=start),
-                                              metadata=with_measure)]
-        dt = output["checkpoint_every"]
-        if dt is not None:
-            operations.append(_op.Checkpoint(path, _op.Every(dt=dt, start=0.0),
-                                             metadata=with_measure))
-        sim.run(until=end, operations=operations)
-    m = measure.result()
+        meta = RunProtocol.start(sim, {"format": _EOS_FORMAT, "version": _EOS_VERSION,
+                                       "parameters": given}, cfg.data["run"])
+    failure = meta.get("failure")
+    if failure is not None:
+        raise RuntimeError(f"this task failed at t={failure['time']:g}: {failure['error']} "
+                           f"(its state is in {path})")
+    protocol = RunProtocol(sim, meta, path, run=cfg.data["run"], output=cfg.data["output"],
+                           block_checkpoints=True)
+    status = protocol.execute()
+    if status == INTERRUPTED:
+        raise KeyboardInterrupt
+    if status == FAILED:
+        raise RuntimeError(meta["failure"]["error"])
+    m = protocol.result()
     psi, _ = hexatic_order(sim)
     return {
         "Z": m.compressibility_factor, "Z_error": m.compressibility_factor_error,

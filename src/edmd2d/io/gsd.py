@@ -3,7 +3,9 @@
 :class:`Writer` appends frames of a :class:`~edmd2d.Simulation` to a GSD file;
 :func:`record` runs a simulation and writes a frame at each of a list of times;
 :func:`read` builds a Simulation from a frame (one written here, or by another
-program).  Uses the ``gsd`` package, a dependency of edmd2d.
+program); :func:`describe` says what a file holds and :func:`copy_until` keeps the
+frames up to a time (those a run continued from a checkpoint goes on from).
+Uses the ``gsd`` package, a dependency of edmd2d.
 
 What a frame holds (HOOMD conventions):
 
@@ -46,12 +48,12 @@ import numpy as np
 
 from .. import measurements as _measurements
 from .. import physics as _physics
-from .._atomic import umask_mode
+from .._atomic import replacing_path, umask_mode
 from .._operations import Operation, Trigger
 from ..geometry import Box, Wall
 from ..simulation import Simulation
 
-__all__ = ["Writer", "WriteGSD", "record", "read"]
+__all__ = ["Writer", "WriteGSD", "record", "read", "describe", "copy_until"]
 
 
 def _gsd_hoomd():
@@ -340,3 +342,94 @@ class WriteGSD(Operation):
 
     def close(self) -> None:
         self.writer.close()
+
+
+def describe(path) -> dict:
+    """What a GSD file holds: its frames, the times they span, and the disks, box,
+    species and walls of its last frame.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+
+    Returns
+    -------
+    dict
+        ``frames``; ``times``, the first and last frames' ``(t0, t1)`` (``None``
+        without edmd2d's time log); ``n``; ``box``, ``(W, H)``; ``periodic``, two
+        bools (both true without edmd2d's log); ``species``, a list of dicts with
+        ``name``, ``count``, ``diameters`` and ``masses`` (each the ``(min, max)``
+        over the species); ``walls``, the number of wall segments; ``collisions``
+        at the last frame (``None`` without edmd2d's log).  With no frames, only
+        ``frames`` (0).
+
+    Raises
+    ------
+    ValueError
+        If ``path`` is not a GSD file.
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> import edmd2d as ed
+    >>> from edmd2d.io import gsd
+    >>> path = os.path.join(tempfile.mkdtemp(), "gas.gsd")
+    >>> gsd.record(ed.make_gas(50, 0.3, seed=1), path, times=[0.0, 1.0])
+    >>> info = gsd.describe(path)
+    >>> info["frames"], info["times"], info["n"], info["species"][0]["diameters"]
+    (2, (0.0, 1.0), 50, (1.0, 1.0))
+    """
+    try:
+        traj = _gsd_hoomd().open(str(path), "r")
+    except Exception as exc:  # (gsd raises several kinds for a file that is not GSD)
+        raise ValueError(f"{path} is not a GSD file ({exc})") from None
+    with traj:
+        frames = len(traj)
+        if frames == 0:
+            return {"frames": 0}
+        first, last = traj[0], traj[frames - 1]
+    log = {k: np.asarray(v) for k, v in last.log.items()}
+    times = None
+    if "edmd2d/time" in first.log and "edmd2d/time" in log:
+        times = (float(np.asarray(first.log["edmd2d/time"])[0]),
+                 float(log["edmd2d/time"][0]))
+    p = last.particles
+    typeid = np.zeros(p.N, int) if p.typeid is None else np.asarray(p.typeid)
+    diameter = np.ones(p.N) if p.diameter is None else np.asarray(p.diameter, float)
+    mass = np.ones(p.N) if p.mass is None else np.asarray(p.mass, float)
+    types = list(p.types) if p.types is not None else ["A"]
+    species = []
+    for t in np.unique(typeid):
+        sel = typeid == t
+        species.append({"name": types[t] if t < len(types) else str(t),
+                        "count": int(sel.sum()),
+                        "diameters": (float(diameter[sel].min()), float(diameter[sel].max())),
+                        "masses": (float(mass[sel].min()), float(mass[sel].max()))})
+    walls = log.get("edmd2d/walls")
+    collisions = log.get("edmd2d/collisions")
+    return {
+        "frames": frames, "times": times, "n": int(p.N),
+        "box": tuple(float(v) for v in last.configuration.box[:2]),
+        "periodic": tuple(bool(v) for v in log.get("edmd2d/periodic", np.array([1, 1]))),
+        "species": species,
+        "walls": 0 if walls is None else len(walls.reshape(-1, 4)),
+        "collisions": None if collisions is None else int(collisions[0]),
+    }
+
+
+def copy_until(source, target, time: float) -> None:
+    """Make ``target`` hold the frames of ``source`` up to the time ``time``, those a
+    run continued from a checkpoint at ``time`` goes on from (later ones were written
+    after the checkpoint).  ``target`` is replaced atomically; it may be ``source``.
+
+    Parameters
+    ----------
+    source, target : str or os.PathLike
+    time : float
+    """
+    hoomd = _gsd_hoomd()
+    with (replacing_path(target) as tmp, hoomd.open(str(source), "r") as old,
+          hoomd.open(tmp, "w") as new):
+        for frame in old:
+            if float(frame.log["edmd2d/time"][0]) <= time:
+                new.append(frame)

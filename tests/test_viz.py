@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import shutil
 import subprocess
 import sys
 
@@ -359,7 +360,7 @@ def test_trails_drawn_as_one_path_per_age_and_rendered_with_breaks():
 
 
 @pytest.mark.skipif(
-    not (viz.shutil.which(matplotlib.rcParams["animation.ffmpeg_path"])
+    not (shutil.which(matplotlib.rcParams["animation.ffmpeg_path"])
          or __import__("importlib").util.find_spec("imageio_ffmpeg")),
     reason="no ffmpeg: pip install 'edmd2d[video]'",
 )
@@ -607,7 +608,7 @@ def test_bad_simulation_and_save_targets(tmp_path):
 
 def test_a_growing_simulation_is_drawn_at_its_present_size():
     """The picture follows the radii of growing disks from frame to frame."""
-    from edmd2d.viz import _Scene
+    from edmd2d.viz._scene import _Scene
 
     sim = ed.random_gas(50, 0.3, seed=seed_of(1))
     sim.set_growth(0.1)

@@ -20,7 +20,7 @@ MODULES = ["edmd2d", "edmd2d.geometry", "edmd2d.simulation", "edmd2d.builders",
            "edmd2d.compress", "edmd2d.ensemble", "edmd2d.physics",
            # (private modules whose objects public modules export: doctest finds an
            # object's examples only in the module that defines it)
-           "edmd2d._operations", "edmd2d._validate"]
+           "edmd2d._operations", "edmd2d._validate", "edmd2d.reference._loop"]
 
 
 @pytest.mark.parametrize("name", MODULES)

@@ -17,11 +17,12 @@ from ._times import _dot
 class CollisionRules:
     """The collision rules, as methods of the simulation whose state they update.
 
-    The state is the one ``ReferenceSimulation`` sets up: the lists ``p``, ``v``,
-    ``r``, ``m``, ``dr``, ``t_last``, ``resting``, ``species`` and ``wall_heat``, the
-    numbers ``time``, ``tc``, ``growth``, ``restitution``, ``wall_restitution``,
-    ``gravity``, ``wall_kt``, ``dissipated``, ``collisions`` and ``wall_collisions``,
-    and the random draws ``_u`` and ``_gauss``.
+    The state is the one ``ReferenceSimulation`` sets up: the per-disk lists ``p``,
+    ``v``, ``r``, ``m``, ``dr``, ``t_last``, ``resting`` and ``species``, the settings
+    ``tc``, ``growth``, ``restitution``, ``wall_restitution``, ``gravity`` and
+    ``wall_kt``, the clock ``time``, the tallies ``dissipated``, ``wall_heat``,
+    ``collisions`` and ``wall_collisions``, and the random draws ``_u`` and ``_gauss``
+    (one stream for the whole run, shared with the thermostat).
     """
 
     def _recent(self, k):

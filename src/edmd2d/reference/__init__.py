@@ -1,0 +1,55 @@
+"""Brute-force reference engine: the plain event loop, in plain Python.
+
+At every step it examines *every* pair of disks (with all periodic images) and *every*
+disk against every wall, box wall and wall end point, takes the earliest contact, moves
+*all* disks to that moment, resolves it, and repeats.  It is slow (O(N^2) per event) and
+meant to be read: it is the specification of what :class:`edmd2d.Simulation` computes
+and the oracle its tests compare against.  It shares no code with the compiled engine;
+only the value objects :class:`~edmd2d.Box` and :class:`~edmd2d.Wall` are common.
+
+Collisions may be inelastic.  The disks are smooth: a collision changes only the normal
+component of the relative velocity (of the disk's velocity, at a wall), which becomes
+``-e`` times itself, with a coefficient of restitution ``e`` for each pair of species and
+``e_w`` for all walls.  The kinetic energy lost, ``(1 - e**2)/2 * mu * vn**2`` per
+collision with normal velocity ``vn`` and reduced mass ``mu`` (the disk's own mass
+against a wall or an immovable disk), is added up in ``dissipated``.  The TC model of
+Luding and McNamara (1998) keeps inelastic collapse away: a collision is elastic if one
+of its movable disks has collided less than a time ``tc`` before.  With the defaults
+(``e = e_w = 1``) every collision is elastic.
+
+Under uniform gravity ``g`` every movable disk flies on a parabola,
+``x(t) = x0 + v0 t + g t^2 / 2``, while immovable disks and walls feel nothing.  Contact
+times are then roots of polynomials of degree up to four, found here by a method of
+their own: :func:`numpy.roots` on the derivative cuts time into pieces on which the
+contact function is monotonic, and its sign, followed by Newton's method and bisection,
+locates the crossing.
+
+The code comes in four parts: the contact-time oracles (``_times.py``), the search for
+the earliest contact (``_search.py``), the collision rules (``_rules.py``) and the event
+loop with the simulation's state (``_loop.py``).
+
+Examples
+--------
+>>> import edmd2d as ed
+>>> from edmd2d.reference import ReferenceSimulation
+>>> ref = ReferenceSimulation([[2.0, 5.0], [5.0, 5.0]], [[1.0, 0.0], [-1.0, 0.0]],
+...                           radii=1.0, box=ed.Box(10.0, 10.0, periodic=False))
+>>> ref.advance(collisions=1).time
+0.5
+>>> ref.events
+[(0.5, 'disk', 0, 1)]
+"""
+
+from __future__ import annotations
+
+from ._loop import ReferenceSimulation
+from ._times import EPS as EPS
+from ._times import INF as INF
+from ._times import box_contact_time_accelerated as box_contact_time_accelerated
+from ._times import circle_contact_time as circle_contact_time
+from ._times import circle_contact_time_accelerated as circle_contact_time_accelerated
+from ._times import circle_contact_time_growing as circle_contact_time_growing
+from ._times import segment_contact_time as segment_contact_time
+from ._times import segment_contact_time_accelerated as segment_contact_time_accelerated
+
+__all__ = ["ReferenceSimulation"]

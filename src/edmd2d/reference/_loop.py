@@ -1,0 +1,466 @@
+"""The reference event loop: :class:`ReferenceSimulation`, its state and its run.
+
+The simulation keeps every disk's state in plain lists and repeats one step: find the
+earliest event (a contact, by the search of ``_search``, or a thermostat redraw), move
+every disk to it, resolve it (the rules of ``_rules``), and wrap the centres back
+into a periodic box.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..geometry import Box, Wall
+from . import _search
+from ._rules import CollisionRules
+from ._times import INF, _at, _dot
+
+
+class ReferenceSimulation(CollisionRules):
+    """Same constructor and core API as :class:`edmd2d.Simulation`, brute force.
+
+    Methods ``advance(until=None, collisions=None)``, ``kinetic_energy()``,
+    ``momentum()``, ``potential_energy()`` and ``total_energy()`` work as in
+    :class:`edmd2d.Simulation`.  Input is trusted (no validation): it is a test oracle.
+
+    Parameters
+    ----------
+    positions, velocities : array_like, shape (N, 2)
+        Disk centres (inside the box) and velocities.
+    radii, masses : float or array_like, shape (N,)
+        Radii and masses (default 1.0); mass ``inf`` makes a disk immovable.
+    box : Box
+        The container.
+    walls : iterable of Wall or of (start, end) pairs, optional
+        Extra wall segments.
+    time : float, default 0.0
+        The clock at the given state.
+    species : array_like of int, shape (N,), optional
+        Species ids ``0 .. S-1`` (default: all 0); they only select ``restitution``.
+    restitution : float or array_like, shape (S, S), default 1.0
+        Normal coefficient of restitution ``e`` of disk-disk collisions, 0 < e <= 1:
+        one value, or a symmetric table indexed by the two disks' species.
+    wall_restitution : float, default 1.0
+        Coefficient ``e_w`` of every collision of a disk with a box wall or a wall
+        segment (side or end point).
+    tc : float, default 0.0
+        Duration (a time) of the TC model: a collision is elastic if a movable disk
+        taking part collided less than ``tc`` before (``t - t_last < tc``).  Immovable
+        disks act as walls and never make a collision elastic; ``tc = 0`` switches the
+        rule off.
+    gravity : (float, float), default (0.0, 0.0)
+        A uniform acceleration of every movable disk.  Immovable disks feel none (they
+        keep their velocity, zero unless they are pistons) and walls stay put.
+        ``(0, 0)`` runs the straight-flight code, bit for bit as without it.
+    wall_temperatures : dict, optional
+        Heated walls ``{wall: kT}`` (``"left"``, ``"right"``, ``"bottom"``, ``"top"``
+        or a segment index): a disk hitting one leaves with its normal velocity
+        ``sqrt(kT/m) sqrt(-2 ln(1 - u))`` and its tangential velocity
+        ``sqrt(kT/m) g`` (``g`` Gaussian), along the wall's unit normal ``n`` into the
+        box and the tangent ``(-n_y, n_x)``.
+    thermostat : (float, float), optional
+        ``(kT, rate)``: an Andersen thermostat.  Its redraws come at the events of a
+        Poisson process of ``rate * N`` (waiting times ``-ln(1 - u) / (rate N)``),
+        each picking disk ``floor(u N)`` (an immovable one is left alone) and drawing
+        both velocity components as ``sqrt(kT/m) g``.
+    seed : int, optional
+        Seed of the ``numpy.random.default_rng`` stream of uniforms ``u`` in
+        ``[0, 1)`` behind every random draw, used in this order: the first waiting
+        time (if there is a thermostat); then, at each redraw, the disk, the next
+        waiting time and two Gaussians; at each heated-wall contact the normal speed
+        and a Gaussian.  A Gaussian takes two: ``sqrt(-2 ln(1 - u1)) cos(2 pi u2)``.
+        These are the engine's draws, in the engine's order, so that a seed gives
+        the same run in both.
+    growth : float, optional
+        Growing radii: ``r_i(t) = r_i (1 + growth (t - time))`` (straight flight,
+        elastic).  A contact reverses the rate ``dd - vn`` at which the gap closes
+        (``vn`` the normal relative velocity, ``dd`` the growth speed of the contact
+        distance): ``vn' = 2 dd - vn``, elastic in the frame of the growing rims.
+
+    Attributes
+    ----------
+    time : float
+        The clock.
+    positions, velocities : ndarray, shape (N, 2)
+        The state at ``time`` (copies).
+    events : list of (float, str, int, int)
+        Every disk, wall and box event as ``(time, kind, disk, partner)``.
+    collisions, wall_collisions : int
+        Disk-disk and disk-wall (box walls and segments) collision counts.
+    t_last : list of float
+        Time of each disk's last collision (``-inf`` before the first; never set for
+        immovable disks).
+    dissipated : float
+        Kinetic energy lost in collisions so far.  ``kinetic_energy() + dissipated`` is
+        constant to rounding, unless immovable disks move (pistons do work); under
+        gravity ``total_energy() + dissipated`` is.
+    gravity : tuple of float
+        The acceleration ``(gx, gy)``.
+    images : list of [int, int]
+        For each disk, the whole periodic lengths taken off each coordinate when it was
+        wrapped back into the box: ``p + images * (width, height)`` is its unwrapped
+        position, which :meth:`potential_energy` uses.
+
+    Notes
+    -----
+    A pair ``i, j`` with unit normal ``n`` from ``j`` to ``i`` and ``vn = (v_i - v_j).n``
+    (< 0 when approaching) leaves with ``v_i' = v_i - (1+e) m_j/(m_i+m_j) vn n`` and
+    ``v_j' = v_j + (1+e) m_i/(m_i+m_j) vn n`` (``v_i' = v_i - (1+e) vn n`` if ``j`` is
+    immovable), which conserves momentum and turns ``vn`` into ``-e vn``.  At a box wall
+    the normal velocity component becomes ``-e_w`` times itself; at a segment side or end
+    point with unit normal ``n``, ``v' = v - (1+e_w)(v.n) n``.
+
+    Under gravity, between events ``x(t) = x0 + v0 t + g t^2 / 2`` and
+    ``v(t) = v0 + g t`` for movable disks, and collisions act on the velocities at the
+    contact time as above.  Each contact is a function ``f`` of time that is positive
+    while the two bodies are apart: the squared distance minus its value at contact
+    for two disks or a disk and a wall end point (a quadratic for two movable disks,
+    whose relative acceleration is zero, a quartic otherwise), ``d^2 - r^2`` for the
+    signed distance ``d`` of the centre from a segment's line (a quartic), the gap to
+    a box wall (a parabola).  The contact is the first ``t >= 0`` at which ``f`` turns
+    from > 0 to <= 0, or ``t = 0`` if ``f(0) <= 0`` (touching or overlapping by
+    rounding) and ``f'(0) < 0`` (approaching).  A double root of ``f`` (a tangential
+    touch, ``f`` at its minimum within rounding of zero) exchanges no momentum and is
+    no event, and bodies that touch and separate may meet again later: a disk that
+    bounced off a floor, a segment or an immovable disk comes back.  A side contact
+    also needs the foot of the centre on the segment; the crossings are tried in
+    order, as a disk can pass beside a segment's end and later fall back onto its
+    side.
+
+    To find the crossings, the real parts of all roots of ``f'``
+    (:func:`numpy.roots`, complex roots included so that none is lost to a small
+    imaginary part) cut ``[0, T]``, ``T`` beyond every root of ``f``, into pieces on
+    which ``f`` is monotonic.  A piece with ``f > 0`` at its start and ``f <= 0`` at its
+    end holds a crossing, located to the last float by safeguarded Newton steps and
+    bisection on the sign of ``f``, evaluated from the positions rather than the
+    polynomial's coefficients.  A crossing is dropped if ``f' >= 0`` there (rounding
+    noise of two bodies separating) or if ``f``'s following minimum is not below
+    zero by more than its rounding error (a tangential touch).
+
+    A resting contact, a disk at rest (``f'(0) = 0``) on a fixed point or a disk that
+    it is pressed against (``f''(0) < 0``), is a contact now: it repeats at one
+    instant, which a run with ``tc`` reports as a collapse.  (A disk at rest on a box
+    wall is held there by an inelastic model, see ``resting``.)
+    The periodic look-ahead window accounts for the acceleration: a disk moves at most
+    ``|v| h + |g| h^2 / 2`` in a time ``h``.
+
+    Examples
+    --------
+    A head-on collision with ``e = 0.5``: the relative speed 2 drops to 1, and a quarter
+    of the reduced-mass energy ``mu vn^2 / 2 = 1`` is kept.
+
+    >>> import edmd2d as ed
+    >>> ref = ReferenceSimulation([[2.0, 5.0], [5.0, 5.0]], [[1.0, 0.0], [-1.0, 0.0]],
+    ...                           radii=1.0, box=ed.Box(10.0, 10.0, periodic=False),
+    ...                           restitution=0.5)
+    >>> ref.advance(collisions=1).velocities.tolist()
+    [[-0.5, 0.0], [0.5, 0.0]]
+    >>> ref.dissipated, ref.kinetic_energy()
+    (0.75, 0.25)
+
+    Dropped from 2 above the floor with ``g = 4``: it lands at ``t = 1``, hops back up
+    every 2 and is at rest at its starting height at ``t = 6``, all its energy
+    potential again (``m g h = 4 * 3``).
+
+    >>> ref = ReferenceSimulation([[5.0, 3.0]], [[0.0, 0.0]], radii=1.0,
+    ...                           box=ed.Box(10.0, 10.0, periodic=False),
+    ...                           gravity=(0.0, -4.0))
+    >>> ref.advance(until=6.0).events
+    [(1.0, 'box', 0, 2), (3.0, 'box', 0, 2), (5.0, 'box', 0, 2)]
+    >>> ref.kinetic_energy(), ref.potential_energy(), ref.total_energy()
+    (0.0, 12.0, 12.0)
+    """
+
+    def __init__(self, positions, velocities, radii, masses=1.0, box: Box | None = None,
+                 walls=(), *, time=0.0, species=None, restitution=1.0,
+                 wall_restitution=1.0, tc=0.0, gravity=(0.0, 0.0),
+                 wall_temperatures=None, thermostat=None, seed=None, growth=None):
+        n = len(positions)
+        self.box = box
+        self.walls = [w if isinstance(w, Wall) else Wall(*w) for w in walls]
+        self.p = [[float(x), float(y)] for x, y in positions]
+        self.v = [[float(x), float(y)] for x, y in velocities]
+        self.r = _per_disk(radii, n)
+        self.m = _per_disk(masses, n)
+        self.time = float(time)
+        # Growth: each radius grows at its own constant speed dr[k] = growth r0[k] from
+        # the radii r0 at time t_grow; self.r always holds the radii now.
+        self.growth = None if not growth else float(growth)
+        self.r0 = list(self.r)
+        self.t_grow = self.time
+        self.dr = [0.0 if self.growth is None else self.growth * r for r in self.r0]
+        self.events: list[tuple[float, str, int, int]] = []
+        self.collisions = 0
+        self.wall_collisions = 0
+        self.species = [0] * n if species is None else [int(s) for s in species]
+        if np.ndim(restitution) == 0:
+            self.restitution = float(restitution)
+        else:
+            self.restitution = [[float(e) for e in row] for row in restitution]
+        self.wall_restitution = float(wall_restitution)
+        self.tc = float(tc)
+        self.t_last = [-INF] * n
+        self.dissipated = 0.0
+        gx, gy = gravity
+        self.gravity = (float(gx), float(gy))
+        # Whole periodic lengths taken off each coordinate by _wrap: the unwrapped
+        # position, which the potential energy needs, is p + images * length.
+        self.images = [[0, 0] for _ in range(n)]
+        # The box walls (0..3: x=0, x=width, y=0, y=height) each disk rests on.  An
+        # inelastic model with tc > 0 holds a disk on a wall that gravity presses it
+        # into once its next bounce would come within tc (and a disk that starts at
+        # rest touching such a wall); a collision with a disk or a segment that gives it
+        # a velocity along the wall's normal frees it.
+        self.resting = [set() for _ in range(n)]
+        names = {"left": 0, "right": 1, "bottom": 2, "top": 3}
+        self.wall_kt = {(names[k] if isinstance(k, str) else 4 + k): float(t)
+                        for k, t in (wall_temperatures or {}).items()}
+        self.thermostat = thermostat
+        self.rng = np.random.default_rng(seed)
+        self.wall_heat = [0.0] * (4 + len(self.walls))  # energy each wall gave the disks
+        self.thermostat_energy = 0.0
+        self.redraws = 0
+        self.next_redraw = INF
+        if thermostat is not None:
+            self.next_redraw = self.time + self._waiting_time()
+        if self._holds():
+            for k in range(n):
+                for side in range(4):
+                    axis = side // 2
+                    if (self.box.periodic[axis] or math.isinf(self.m[k])
+                            or self.v[k][axis] != 0.0 or self._pressing(side) >= 0.0):
+                        continue
+                    length = (self.box.width, self.box.height)[axis]
+                    gap = (self.p[k][axis] - self.r[k] if side % 2 == 0
+                           else length - self.r[k] - self.p[k][axis])
+                    if gap <= 1e-9 * self.r[k]:
+                        self.resting[k].add(side)
+
+    # -- the images of space: shifts to try on periodic axes.  Within one look-ahead
+    # window (see _horizon) no disk moves more than a quarter of a periodic length, so
+    # a pair's relative position changes by at most half a length and every image it
+    # can touch is within two lengths of the stored (wrapped) positions.
+    def _shifts(self):
+        xs = (-2, -1, 0, 1, 2) if self.box.periodic[0] else (0,)
+        ys = (-2, -1, 0, 1, 2) if self.box.periodic[1] else (0,)
+        return [(sx * self.box.width, sy * self.box.height) for sx in xs for sy in ys]
+
+    def _horizon(self):
+        """How far ahead next_event may look on a periodic box (inf if walled)."""
+        lengths = [length for axis, length in enumerate((self.box.width, self.box.height))
+                   if self.box.periodic[axis]]
+        vmax = max((math.hypot(*v) for v in self.v), default=0.0)
+        if self._accelerated():
+            # A disk moves at most vmax h + |g| h^2 / 2 in a time h: the window is the
+            # positive root of vmax h + |g| h^2 / 2 = L / 4, written without cancellation.
+            gabs = math.hypot(*self.gravity)
+            if not lengths:
+                return INF
+            half = 0.5 * min(lengths)
+            return half / (vmax + math.sqrt(vmax * vmax + gabs * half))
+        if not lengths or vmax == 0.0:
+            return INF
+        return min(lengths) / (4.0 * vmax)
+
+    def _accelerated(self):
+        """Whether gravity is on and some disk feels it (a movable disk)."""
+        return self.gravity != (0.0, 0.0) and any(not math.isinf(m) for m in self.m)
+
+    def _acceleration(self, k):
+        """Disk ``k``'s acceleration: gravity if movable (less the components held by
+        the walls it rests on), zero if immovable."""
+        if math.isinf(self.m[k]):
+            return (0.0, 0.0)
+        held = {side // 2 for side in self.resting[k]}
+        return tuple(0.0 if axis in held else g for axis, g in enumerate(self.gravity))
+
+    # -- random draws: all from one stream of uniforms, as documented above
+    def _u(self):
+        return float(self.rng.random())
+
+    def _gauss(self):
+        r = math.sqrt(-2.0 * math.log(1.0 - self._u()))
+        return r * math.cos(2.0 * math.pi * self._u())
+
+    def _waiting_time(self):
+        return -math.log(1.0 - self._u()) / (self.thermostat[1] * len(self.p))
+
+    def _redraw(self):
+        """A thermostat event at the current time."""
+        n = len(self.p)
+        k = min(int(self._u() * n), n - 1)
+        self.next_redraw += self._waiting_time()
+        if math.isinf(self.m[k]):
+            return
+        s = math.sqrt(self.thermostat[0] / self.m[k])
+        before = _dot(self.v[k], self.v[k])
+        vx = s * self._gauss()
+        vy = s * self._gauss()
+        self.v[k] = [vx, vy]
+        self.thermostat_energy += 0.5 * self.m[k] * (vx * vx + vy * vy - before)
+        self.resting[k].clear()
+        self.redraws += 1
+        self.events.append((self.time, "thermostat", k, -1))
+
+    def next_event(self):
+        """The earliest event from now, found by examining every pair and every wall.
+
+        Returns
+        -------
+        tuple
+            ``(dt, kind, i, partner, detail)``: the time from now (``inf`` if
+            nothing ever happens), the kind (``"disk"``, ``"wall"``, ``"box"``, or
+            ``None``), the disk, its partner (a disk, a segment or a box side) and
+            what resolving the contact needs (a pair's periodic image shift; a
+            segment's part that is hit and its end points in that image; ``None``
+            for a box wall).
+        """
+        shifts = self._shifts()
+        if self._accelerated():
+            acc = [self._acceleration(k) for k in range(len(self.p))]
+            return _search.next_event_accelerated(self.p, self.v, self.r, acc, self.walls,
+                                                  self.box, shifts)
+        return _search.next_event(self.p, self.v, self.r,
+                                  None if self.growth is None else self.dr, self.walls,
+                                  self.box, shifts)
+
+    def _drift(self, dt):
+        """Move every disk for ``dt``: along its straight line, or on its parabola under
+        gravity (movable disks; their velocities change by ``g dt``)."""
+        if not self._accelerated():
+            self.p = [[p[0] + dt * v[0], p[1] + dt * v[1]] for p, v in zip(self.p, self.v)]
+            self.time += dt
+            if self.growth is not None:
+                f = 1.0 + self.growth * (self.time - self.t_grow)
+                self.r = [r * f for r in self.r0]
+            return
+        acc = [self._acceleration(k) for k in range(len(self.p))]
+        self.p = [list(_at(p, v, a, dt)) for p, v, a in zip(self.p, self.v, acc)]
+        self.v = [[v[0] + dt * a[0], v[1] + dt * a[1]] for v, a in zip(self.v, acc)]
+        self.time += dt
+
+    def _wrap(self):
+        """Bring centres back into the box on periodic axes (after an event is resolved,
+        so the image chosen by ``next_event`` still describes the contact)."""
+        for p, images in zip(self.p, self.images):
+            for axis, length in enumerate((self.box.width, self.box.height)):
+                if self.box.periodic[axis]:
+                    wrapped = p[axis] % length
+                    if wrapped != p[axis]:
+                        images[axis] += round((p[axis] - wrapped) / length)
+                    p[axis] = wrapped
+
+    def advance(self, until=None, collisions=None):
+        """Process events in time order up to a time or a number of collisions.
+
+        Parameters
+        ----------
+        until : float, optional
+            Process every event up to this time, then let all disks fly on to it.
+        collisions : int, optional
+            Stop right after this many further disk-disk collisions.  With both, the
+            run stops at whichever comes first.
+
+        Returns
+        -------
+        ReferenceSimulation
+            ``self``; each processed event is appended to ``events`` as ``(time,
+            kind, disk, partner)``.
+        """
+        target = INF if until is None else float(until)
+        todo = INF if collisions is None else int(collisions)
+        done = 0
+        while done < todo:
+            dt, kind, i, partner, detail = self.next_event()
+            horizon = self._horizon()
+            wait = self.next_redraw - self.time
+            if wait <= min(dt, horizon) and self.next_redraw <= target:
+                # A thermostat redraw comes first (at a tie with a contact, too).
+                t_redraw = self.next_redraw
+                self._drift(wait)
+                self.time = t_redraw
+                self._wrap()
+                self._redraw()
+                continue
+            if dt > horizon and self.time + horizon < target:
+                # Nothing within the look-ahead window: move there and look again.
+                self._drift(horizon)
+                self._wrap()
+                continue
+            if self.time + dt > target or dt == INF:
+                break
+            self._drift(dt)
+            self._resolve(kind, i, partner, detail)
+            self._wrap()
+            self.events.append((self.time, kind, i, partner))
+            done += kind == "disk"
+        if until is not None and done < todo:
+            self._drift(target - self.time)
+            self._wrap()
+        return self
+
+    @property
+    def positions(self):
+        """The disk centres now, a new ``(N, 2)`` array."""
+        return np.array(self.p)
+
+    @property
+    def velocities(self):
+        """The disk velocities now, a new ``(N, 2)`` array."""
+        return np.array(self.v)
+
+    def kinetic_energy(self):
+        """The kinetic energy of the movable disks.
+
+        Returns
+        -------
+        float
+            ``sum m v^2 / 2`` over the disks of finite mass.
+        """
+        return sum(0.5 * m * _dot(v, v) for m, v in zip(self.m, self.v) if not math.isinf(m))
+
+    def momentum(self):
+        """The total momentum of the movable disks.
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            ``sum m v`` over the disks of finite mass.
+        """
+        return sum((m * np.array(v) for m, v in zip(self.m, self.v) if not math.isinf(m)),
+                   np.zeros(2))
+
+    def potential_energy(self):
+        """The potential energy in the uniform field ``gravity``.
+
+        Returns
+        -------
+        float
+            ``-sum m g.x`` over the movable disks, ``x`` the unwrapped centre (the
+            stored one plus the whole periodic lengths taken off at each wrap): the
+            height gained through a periodic boundary is kept.
+        """
+        gx, gy = self.gravity
+        w, h = self.box.width, self.box.height
+        return -sum(m * (gx * (p[0] + k[0] * w) + gy * (p[1] + k[1] * h))
+                    for m, p, k in zip(self.m, self.p, self.images) if not math.isinf(m))
+
+    def total_energy(self):
+        """Kinetic plus potential energy.
+
+        Returns
+        -------
+        float
+            Constant in an elastic run (with immovable disks at rest), and
+            ``total_energy() + dissipated`` constant otherwise.
+        """
+        return self.kinetic_energy() + self.potential_energy()
+
+
+def _per_disk(value, n):
+    try:
+        return [float(value)] * n
+    except TypeError:
+        return [float(x) for x in value]

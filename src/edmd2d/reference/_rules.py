@@ -1,0 +1,187 @@
+"""The collision rules of the reference engine: what a contact does to the disks.
+
+:class:`CollisionRules` is the part of ``ReferenceSimulation`` that resolves the
+contact its search found, once the disks are moved to it: a pair's impulse with its
+coefficient of restitution and the TC model, a reflection at a box wall or a wall
+segment (side or end point), a heated wall's new velocity, a disk coming to rest on a
+box wall that gravity presses it into, and contacts of growing disks.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ._times import _dot
+
+
+class CollisionRules:
+    """The collision rules, as methods of the simulation whose state they update.
+
+    The state is the one ``ReferenceSimulation`` sets up: the per-disk lists ``p``,
+    ``v``, ``r``, ``m``, ``dr``, ``t_last``, ``resting`` and ``species``, the settings
+    ``tc``, ``growth``, ``restitution``, ``wall_restitution``, ``gravity`` and
+    ``wall_kt``, the clock ``time``, the tallies ``dissipated``, ``wall_heat``,
+    ``collisions`` and ``wall_collisions``, and the random draws ``_u`` and ``_gauss``
+    (one stream for the whole run, shared with the thermostat).
+    """
+
+    def _recent(self, k):
+        """The TC rule for disk ``k``: movable and collided less than ``tc`` ago."""
+        return not math.isinf(self.m[k]) and self.time - self.t_last[k] < self.tc
+
+    def _pair_restitution(self, i, j):
+        if self._recent(i) or self._recent(j):
+            return 1.0
+        if isinstance(self.restitution, float):
+            return self.restitution
+        return self.restitution[self.species[i]][self.species[j]]
+
+    def _wall_restitution(self, i):
+        return 1.0 if self._recent(i) else self.wall_restitution
+
+    def _resolve(self, kind, i, partner, detail):
+        """Resolve the contact ``next_event`` found (``kind``, disk ``i``, its
+        ``partner`` and the ``detail`` of the contact), the disks moved to its time."""
+        p, v = self.p[i], self.v[i]
+        if kind == "disk":
+            j = partner
+            if math.isinf(self.m[i]) and math.isinf(self.m[j]):
+                raise RuntimeError(f"immovable disks {i} and {j} meet")
+            sx, sy = detail
+            d = (p[0] - self.p[j][0] - sx, p[1] - self.p[j][1] - sy)
+            norm = math.sqrt(_dot(d, d))
+            n = (d[0] / norm, d[1] / norm)
+            vn = (v[0] - self.v[j][0]) * n[0] + (v[1] - self.v[j][1]) * n[1]
+            if self.growth is not None:
+                # The gap closes at dd - vn: the rate the collision reverses (vn' - dd =
+                # dd - vn); rounding may leave a contact not closing: nothing changes.
+                # (Closing as the contact time's quadratic has it, d.dv < s ds with s
+                # the contact distance: the same test, also for a pair that rounding
+                # left overlapping.)
+                dv = (v[0] - self.v[j][0], v[1] - self.v[j][1])
+                s = self.r[i] + self.r[j]
+                vn = min((_dot(d, dv) - s * (self.dr[i] + self.dr[j])) / norm, 0.0)
+            e = self._pair_restitution(i, j)
+            # Impulse along n: v_i' = v_i - (1+e) m_j/(m_i+m_j) vn n, and the opposite
+            # for j, so that vn becomes -e vn.  For e = 1, 1 + e is exactly 2.0: the
+            # elastic result is the textbook one to the last bit.
+            k = 1.0 + e
+            if math.isinf(self.m[j]):
+                fi, fj, mu = k, 0.0, self.m[i]
+            elif math.isinf(self.m[i]):
+                fi, fj, mu = 0.0, k, self.m[j]
+            else:
+                mt = self.m[i] + self.m[j]
+                fi, fj = k * self.m[j] / mt, k * self.m[i] / mt
+                mu = self.m[i] * self.m[j] / mt  # the reduced mass
+            self.v[i] = [v[0] - fi * vn * n[0], v[1] - fi * vn * n[1]]
+            self.v[j] = [self.v[j][0] + fj * vn * n[0], self.v[j][1] + fj * vn * n[1]]
+            # The kinetic energy of the relative normal motion, mu vn^2 / 2, times 1 - e^2.
+            self.dissipated += 0.5 * (1.0 - e * e) * mu * vn * vn
+            for disk in (i, j):
+                if not math.isinf(self.m[disk]):
+                    self.t_last[disk] = self.time
+                self._release(disk)
+            self.collisions += 1
+            return
+        if math.isinf(self.m[i]):
+            raise RuntimeError(f"immovable disk {i} reaches a wall")
+        e = self._wall_restitution(i)
+        wall = partner if kind == "box" else 4 + partner
+        if wall in self.wall_kt:
+            if kind == "box":
+                sign = 1.0 if partner % 2 == 0 else -1.0
+                n = (sign, 0.0) if partner < 2 else (0.0, sign)
+            else:
+                part, a, b = detail
+                if part == "side":
+                    n = (a[1] - b[1], b[0] - a[0])
+                    if _dot(n, (p[0] - a[0], p[1] - a[1])) < 0.0:
+                        n = (-n[0], -n[1])
+                else:
+                    end = a if part == "start" else b
+                    n = (p[0] - end[0], p[1] - end[1])
+                norm = math.sqrt(_dot(n, n))
+                n = (n[0] / norm, n[1] / norm)
+            self._heat(i, wall, n)
+            self.t_last[i] = self.time
+            self.wall_collisions += 1
+            self._release(i)  # (a heated wall never holds a disk, and frees one it hits)
+            return
+        if kind == "box" and self.growth is not None:
+            # The rim moves towards the wall at dr: v' reverses the closing rate.
+            axis = partner // 2
+            inward = 1.0 if partner % 2 == 0 else -1.0
+            closing = min(v[axis] * inward - self.dr[i], 0.0)
+            v[axis] -= 2.0 * closing * inward
+            self.wall_collisions += 1
+            return
+        if kind == "box":
+            axis = partner // 2
+            vn = v[axis]
+            v[axis] = -e * vn
+            self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
+            g_in = self._pressing(partner)
+            rebound = abs(v[axis])
+            # Rest: the rebound would bring the disk back in 2 v / |g_n| < tc.
+            if self._holds() and g_in < 0.0 and 2.0 * rebound < -g_in * self.tc:
+                self.dissipated += 0.5 * self.m[i] * rebound * rebound
+                v[axis] = 0.0
+                self.resting[i].add(partner)
+            self.t_last[i] = self.time
+            self.wall_collisions += 1
+            return
+        else:
+            part, a, b = detail
+            if part == "side":
+                u = (b[0] - a[0], b[1] - a[1])
+                n = (-u[1], u[0])
+            else:
+                end = a if part == "start" else b
+                n = (p[0] - end[0], p[1] - end[1])
+            norm = math.sqrt(_dot(n, n))
+            n = (n[0] / norm, n[1] / norm)
+            vn = _dot(v, n)
+            if self.growth is not None:
+                # (n points to the disk's side for an end point; for a side, the sign
+                # of n drops out of vn n, but not of the growth term.)
+                if part == "side":
+                    if _dot(n, (p[0] - a[0], p[1] - a[1])) < 0.0:
+                        n = (-n[0], -n[1])
+                        vn = -vn
+                    vn = min(vn - self.dr[i], 0.0)
+                else:  # (as for a pair: the end point's separation times dv, less r dr)
+                    vn = min((vn * norm - self.r[i] * self.dr[i]) / norm, 0.0)
+            k = 1.0 + e  # exactly 2.0 for e = 1, as in the elastic reflection
+            self.v[i] = [v[0] - k * vn * n[0], v[1] - k * vn * n[1]]
+            self._release(i)
+        self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
+        self.t_last[i] = self.time
+        self.wall_collisions += 1
+
+    def _heat(self, i, wall, n):
+        """Disk ``i`` leaves heated ``wall`` (normal ``n`` into the box)."""
+        s = math.sqrt(self.wall_kt[wall] / self.m[i])
+        before = _dot(self.v[i], self.v[i])
+        vn = s * math.sqrt(-2.0 * math.log(1.0 - self._u()))
+        vt = s * self._gauss()
+        self.v[i] = [vn * n[0] - vt * n[1], vn * n[1] + vt * n[0]]
+        self.wall_heat[wall] += 0.5 * self.m[i] * (_dot(self.v[i], self.v[i]) - before)
+
+    def _release(self, k):
+        """After a collision, disk ``k`` stays held only by the walls along whose normal
+        it still does not move."""
+        self.resting[k] = {side for side in self.resting[k] if self.v[k][side // 2] == 0.0}
+
+    def _holds(self):
+        """Whether walls hold disks at rest: some coefficient below 1, and tc > 0."""
+        table = (self.restitution if isinstance(self.restitution, list)
+                 else [[self.restitution]])
+        inelastic = self.wall_restitution < 1.0 or any(e < 1.0 for row in table for e in row)
+        return inelastic and self.tc > 0.0
+
+    def _pressing(self, side):
+        """Gravity's component along the inward normal of box wall ``side`` (negative:
+        it presses disks into that wall)."""
+        g = self.gravity[side // 2]
+        return g if side % 2 == 0 else -g

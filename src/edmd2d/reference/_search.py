@@ -1,0 +1,170 @@
+"""The brute-force search for the next event: every pair, image, wall and box wall.
+
+Given the disks' state, these functions try every candidate contact with the oracles of
+``_times`` and return the earliest, in straight flight (:func:`next_event`) and
+under gravity (:func:`next_event_accelerated`, which examines the candidates in order of
+a lower bound on their contact time and stops once no later one can come first).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ._times import (
+    INF,
+    _dot,
+    box_contact_time_accelerated,
+    circle_contact_time,
+    circle_contact_time_accelerated,
+    circle_contact_time_growing,
+    segment_contact_time,
+    segment_contact_time_accelerated,
+)
+
+
+def _segment_distance(p, a, b):
+    """Distance from the point ``p`` to the segment a-b."""
+    u = (b[0] - a[0], b[1] - a[1])
+    rel = (p[0] - a[0], p[1] - a[1])
+    s = min(max(_dot(rel, u) / _dot(u, u), 0.0), 1.0)
+    return math.hypot(rel[0] - s * u[0], rel[1] - s * u[1])
+
+
+def _earliest(gap, speed, acceleration, scale):
+    """A lower bound on the time two bodies ``gap`` apart need to touch, with relative
+    speed ``speed`` and acceleration ``acceleration`` (magnitudes): the root of
+    ``speed t + acceleration t^2 / 2 = gap``, for a gap cut by ``1e-9 (gap + scale)``
+    so that rounding cannot make it too large.  0 for bodies (nearly) in contact."""
+    gap -= 1e-9 * (abs(gap) + scale)
+    if gap <= 0.0:
+        return 0.0
+    root = speed + math.sqrt(speed * speed + 2.0 * acceleration * gap)
+    return 2.0 * gap / root if root > 0.0 else INF
+
+
+def next_event(positions, velocities, radii, growth_speeds, walls, box, shifts):
+    """The earliest contact in straight flight, as ``ReferenceSimulation.next_event``.
+
+    ``growth_speeds`` are the speeds at which the radii grow, or ``None`` without
+    growth; ``shifts`` the periodic image shifts to try for each pair and wall.
+    """
+    best = (INF, None, -1, -1, None)
+    n = len(positions)
+    for i in range(n):
+        for j in range(i + 1, n):
+            dv = (velocities[i][0] - velocities[j][0], velocities[i][1] - velocities[j][1])
+            for sx, sy in shifts:
+                dp = (positions[i][0] - positions[j][0] - sx,
+                      positions[i][1] - positions[j][1] - sy)
+                if growth_speeds is None:
+                    t = circle_contact_time(dp, dv, radii[i] + radii[j])
+                else:
+                    t = circle_contact_time_growing(dp, dv, radii[i] + radii[j],
+                                                    growth_speeds[i] + growth_speeds[j])
+                if t < best[0]:
+                    best = (t, "disk", i, j, (sx, sy))
+        for k, wall in enumerate(walls):
+            for sx, sy in shifts:
+                a = (wall.start[0] + sx, wall.start[1] + sy)
+                b = (wall.end[0] + sx, wall.end[1] + sy)
+                t, part = segment_contact_time(positions[i], velocities[i], radii[i], a, b,
+                                               None if growth_speeds is None
+                                               else growth_speeds[i])
+                if t < best[0]:
+                    best = (t, "wall", i, k, (part, a, b))
+        for axis, length in enumerate((box.width, box.height)):
+            if box.periodic[axis]:
+                continue
+            x, vx, r = positions[i][axis], velocities[i][axis], radii[i]
+            if growth_speeds is not None:
+                # The rim grows towards both walls: the gaps x - r and
+                # length - r - x close at dr - vx and dr + vx.
+                dr = growth_speeds[i]
+                for t, side in ((max((x - r) / (dr - vx), 0.0) if dr - vx > 0 else INF,
+                                 2 * axis),
+                                (max((length - r - x) / (dr + vx), 0.0)
+                                 if dr + vx > 0 else INF, 2 * axis + 1)):
+                    if t < best[0]:
+                        best = (t, "box", i, side, None)
+                continue
+            if vx < 0:
+                t, side = max((x - r) / -vx, 0.0), 2 * axis
+            elif vx > 0:
+                t, side = max((length - r - x) / vx, 0.0), 2 * axis + 1
+            else:
+                continue
+            if t < best[0]:
+                best = (t, "box", i, side, None)
+    return best
+
+
+def next_event_accelerated(positions, velocities, radii, acc, walls, box, shifts):
+    """:func:`next_event` under gravity, ``acc`` each disk's acceleration.
+
+    Two movable disks (or two immovable ones) have no relative acceleration: the
+    quadratic of straight flight.  A movable disk against an immovable one, a wall
+    end point, a wall side or a box wall: the contact functions of
+    :func:`circle_contact_time_accelerated`, :func:`segment_contact_time_accelerated`
+    and :func:`box_contact_time_accelerated`.
+
+    The candidates are the same as in straight flight (every pair, image, wall and
+    box wall), only examined in order of a lower bound on their contact time:
+    bodies a gap ``s`` apart, with relative speed ``w`` and acceleration ``a``, close
+    it no sooner than the root of ``w t + a t^2 / 2 = s``.  Once that bound exceeds
+    the earliest contact found, no later candidate can come first and the search
+    stops.  Of equal times the candidate first in the loop order of straight flight
+    wins, as there.
+    """
+    n = len(positions)
+    candidates = []  # (lower bound on the time, loop order, kind, i, partner, detail)
+    for i in range(n):
+        p, v, r = positions[i], velocities[i], radii[i]
+        for j in range(i + 1, n):
+            dv = (v[0] - velocities[j][0], v[1] - velocities[j][1])
+            da = (acc[i][0] - acc[j][0], acc[i][1] - acc[j][1])
+            d = r + radii[j]
+            for sx, sy in shifts:
+                dp = (p[0] - positions[j][0] - sx, p[1] - positions[j][1] - sy)
+                gap = math.hypot(*dp) - d
+                candidates.append((_earliest(gap, math.hypot(*dv), math.hypot(*da), d),
+                                   len(candidates), "disk", i, j, (sx, sy, dp, dv, da)))
+        for k, wall in enumerate(walls):
+            for sx, sy in shifts:
+                a = (wall.start[0] + sx, wall.start[1] + sy)
+                b = (wall.end[0] + sx, wall.end[1] + sy)
+                gap = _segment_distance(p, a, b) - r
+                candidates.append((_earliest(gap, math.hypot(*v), math.hypot(*acc[i]), r),
+                                   len(candidates), "wall", i, k, (a, b)))
+        for axis, length in enumerate((box.width, box.height)):
+            if not box.periodic[axis]:
+                gap = min(p[axis], length - p[axis]) - r
+                candidates.append((_earliest(gap, abs(v[axis]), abs(acc[i][axis]), r),
+                                   len(candidates), "box", i, axis, length))
+    best, best_key = (INF, None, -1, -1, None), (INF, -1)
+    for bound, order, kind, i, partner, data in sorted(candidates, key=lambda c: c[:2]):
+        if bound > best[0]:
+            break
+        p, v, r = positions[i], velocities[i], radii[i]
+        if kind == "disk":
+            sx, sy, dp, dv, da = data
+            d = r + radii[partner]
+            if da == (0.0, 0.0):
+                t = circle_contact_time(dp, dv, d)
+            else:
+                t = circle_contact_time_accelerated(dp, dv, da, d)
+            event = (t, "disk", i, partner, (sx, sy))
+        elif kind == "wall":
+            a, b = data
+            if acc[i] == (0.0, 0.0):
+                t, part = segment_contact_time(p, v, r, a, b)
+            else:
+                t, part = segment_contact_time_accelerated(p, v, acc[i], r, a, b)
+            event = (t, "wall", i, partner, (part, a, b))
+        else:
+            axis = partner
+            t, upper = box_contact_time_accelerated(p[axis], v[axis], acc[i][axis], r,
+                                                    data)
+            event = (t, "box", i, 2 * axis + int(bool(upper)), None)
+        if (t, order) < best_key:
+            best, best_key = event, (t, order)
+    return best

@@ -45,7 +45,7 @@ def _run_probe(args: list[str], env_extra: dict | None = None, timeout: float = 
     t0 = time.perf_counter()
     proc = subprocess.run(
         [sys.executable, os.path.join(HERE, "probes.py"), *args],
-        env=env, capture_output=True, text=True, timeout=timeout,
+        env=env, check=False, capture_output=True, text=True, timeout=timeout,
     )
     wall = time.perf_counter() - t0
     if proc.returncode != 0:

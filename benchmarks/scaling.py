@@ -279,7 +279,7 @@ def _cpu_name() -> str:
 
 def _git(*args: str) -> str:
     try:
-        return subprocess.run(["git", *args], cwd=HERE, capture_output=True, text=True,
+        return subprocess.run(["git", *args], cwd=HERE, check=False, capture_output=True, text=True,
                               timeout=10).stdout.rstrip()
     except (OSError, subprocess.SubprocessError):
         return ""

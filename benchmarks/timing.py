@@ -33,8 +33,9 @@ def engine_array_bytes(sim) -> int:
     the two row tables: each buffer is counted once.
     """
     owners = {}
-    for v in vars(sim._state).values():
-        if isinstance(v, np.ndarray):
+    for value in vars(sim._state).values():
+        if isinstance(value, np.ndarray):
+            v = value
             while isinstance(v.base, np.ndarray):  # (a view: count its owner, once)
                 v = v.base
             owners[id(v)] = v

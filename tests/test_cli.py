@@ -301,11 +301,11 @@ def test_the_installed_command_runs(tmp_path):
     done = subprocess.run(
         [sys.executable, "-m", "edmd2d.cli", "run", str(write(tmp_path, text)), "-o",
          str(tmp_path / "out"), "--no-progress"],
-        env=env, capture_output=True, text=True, timeout=120)
+        env=env, check=False, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
     assert "done at t=3" in done.stdout
     bad = subprocess.run([sys.executable, "-m", "edmd2d", "info", str(tmp_path / "nothing")],
-                         env=env, capture_output=True, text=True, timeout=60)
+                         env=env, check=False, capture_output=True, text=True, timeout=60)
     assert bad.returncode == 2 and bad.stderr.startswith("edmd2d: error:")
     assert "Traceback" not in bad.stderr
 

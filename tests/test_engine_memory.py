@@ -184,7 +184,8 @@ def test_wall_free_gas_holds_no_per_cell_wall_index():
     sim.advance(collisions=3000)
     assert not np.array_equal(sim._order, np.arange(1500))  # it did re-sort
     listed = []
-    for c, j in enumerate(sim._head):  # every disk in exactly its own cell's list
+    for c, first in enumerate(sim._head):  # every disk in exactly its own cell's list
+        j = first
         while j >= 0:
             assert sim._E[j, 0] == c
             listed.append(j)

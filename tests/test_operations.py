@@ -61,7 +61,7 @@ def test_wall_clock_triggers_fire_between_slices(monkeypatch):
 
 
 @pytest.mark.parametrize("make, error, match", [
-    (lambda: op.Every(), TypeError, "exactly one of"),
+    (op.Every, TypeError, "exactly one of"),
     (lambda: op.Every(dt=1.0, collisions=5), TypeError, "exactly one of"),
     (lambda: op.Every(dt=-1.0), ValueError, "dt"),
     (lambda: op.Every(collisions=0), ValueError, "collisions"),

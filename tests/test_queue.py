@@ -104,7 +104,8 @@ def drive(n, now, times, updates):
     qt = arrays[0]
     q.build(now, np.asarray(times, float), *arrays)
     check_queue(*arrays)
-    for disk, dt, pop in updates:
+    for chosen, dt, pop in updates:
+        disk = chosen
         before = snapshot(*arrays)
         top = q.top(*arrays)
         assert top == earliest(qt)

@@ -514,7 +514,7 @@ def run(sim, until=None, collisions=None, operations=(), progress=False):
             left = [k for k in left if k is not None]
             budget = c_end - sim.counts.collisions
             if left:
-                budget = min(budget, min(left))
+                budget = min(budget, *left)
             if clocked:
                 budget = min(budget, WALL_CLOCK_SLICE)
             c_before = sim.counts.collisions

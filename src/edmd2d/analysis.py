@@ -179,8 +179,8 @@ def radial_distribution(source, box: Box | None = None, *, r_max: float | None =
     hist = np.zeros(bins)
     n_frames, n = frames.shape[0], frames.shape[1]
     bsize = _boxsize(box, r_max)
-    for pos in frames:
-        pos = _wrap(pos, box)
+    for frame in frames:
+        pos = _wrap(frame, box)
         tree = spatial.cKDTree(pos, boxsize=bsize)
         # Ordered pairs (each pair twice, and every disk with itself) closer than each
         # upper edge (strictly, as the bins are [r_k, r_k+1)), minimum image on periodic

@@ -316,5 +316,6 @@ class Checkpoint(Operation):
         self.metadata = metadata
 
     def __call__(self, sim) -> None:
+        """Save ``sim`` with the metadata, replacing the file."""
         meta = self.metadata(sim) if callable(self.metadata) else self.metadata
         save(sim, self.path, metadata=meta)

@@ -546,6 +546,7 @@ class Measure(Operation):
         self._edges.append(_edge(sim, self._movable))
 
     def __call__(self, sim) -> None:
+        """Take a block boundary (the first opens the window)."""
         if not self._edges:
             self._open(sim)
         else:

@@ -56,6 +56,7 @@ class EventWriter:
             self._file.write(_HEADER)
 
     def __call__(self, batch) -> None:
+        """Append a batch of events (a structured array of ``EVENT_DTYPE``) as rows."""
         lines = [f"{float(e['time'])!r},{e['kind']},{int(e['disk'])},{int(e['partner'])},"
                  f"{float(e['impulse'])!r}\n" for e in batch]
         self._file.writelines(lines)

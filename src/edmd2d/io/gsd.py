@@ -338,9 +338,11 @@ class WriteGSD(Operation):
         self.writer = Writer(path, mode)
 
     def __call__(self, sim) -> None:
+        """Append a frame of ``sim``."""
         self.writer.write(sim)
 
     def close(self) -> None:
+        """Close the file."""
         self.writer.close()
 
 

@@ -131,30 +131,29 @@ class CollisionRules:
             self.t_last[i] = self.time
             self.wall_collisions += 1
             return
+        part, a, b = detail
+        if part == "side":
+            u = (b[0] - a[0], b[1] - a[1])
+            n = (-u[1], u[0])
         else:
-            part, a, b = detail
+            end = a if part == "start" else b
+            n = (p[0] - end[0], p[1] - end[1])
+        norm = math.sqrt(_dot(n, n))
+        n = (n[0] / norm, n[1] / norm)
+        vn = _dot(v, n)
+        if self.growth is not None:
+            # (n points to the disk's side for an end point; for a side, the sign
+            # of n drops out of vn n, but not of the growth term.)
             if part == "side":
-                u = (b[0] - a[0], b[1] - a[1])
-                n = (-u[1], u[0])
-            else:
-                end = a if part == "start" else b
-                n = (p[0] - end[0], p[1] - end[1])
-            norm = math.sqrt(_dot(n, n))
-            n = (n[0] / norm, n[1] / norm)
-            vn = _dot(v, n)
-            if self.growth is not None:
-                # (n points to the disk's side for an end point; for a side, the sign
-                # of n drops out of vn n, but not of the growth term.)
-                if part == "side":
-                    if _dot(n, (p[0] - a[0], p[1] - a[1])) < 0.0:
-                        n = (-n[0], -n[1])
-                        vn = -vn
-                    vn = min(vn - self.dr[i], 0.0)
-                else:  # (as for a pair: the end point's separation times dv, less r dr)
-                    vn = min((vn * norm - self.r[i] * self.dr[i]) / norm, 0.0)
-            k = 1.0 + e  # exactly 2.0 for e = 1, as in the elastic reflection
-            self.v[i] = [v[0] - k * vn * n[0], v[1] - k * vn * n[1]]
-            self._release(i)
+                if _dot(n, (p[0] - a[0], p[1] - a[1])) < 0.0:
+                    n = (-n[0], -n[1])
+                    vn = -vn
+                vn = min(vn - self.dr[i], 0.0)
+            else:  # (as for a pair: the end point's separation times dv, less r dr)
+                vn = min((vn * norm - self.r[i] * self.dr[i]) / norm, 0.0)
+        k = 1.0 + e  # exactly 2.0 for e = 1, as in the elastic reflection
+        self.v[i] = [v[0] - k * vn * n[0], v[1] - k * vn * n[1]]
+        self._release(i)
         self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
         self.t_last[i] = self.time
         self.wall_collisions += 1

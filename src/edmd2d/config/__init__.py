@@ -55,11 +55,18 @@ crosses are left out (their number is reported).
 
 from __future__ import annotations
 
+from . import _sweep
 from ._build import build
 from ._run import load, loads
 from ._schema import ConfigError, RunConfig
-from ._sweep import SWEEP_KEYS, load_sweep, loads_sweep, task_config
+from ._sweep import load_sweep, loads_sweep, task_config
 
 __all__ = ["ConfigError", "RunConfig", "load", "loads", "build", "load_sweep",
            "loads_sweep", "task_config", "SWEEP_KEYS"]
+
+# (Bound here, not imported by name, so that its documentation comment is read from
+# this module, whose page documents it.)
+#: The keys of a sweep's parameter set, each with the table it belongs to: a parameter
+#: set is one flat dict (``{"n": 400, "packing_fraction": 0.3, "duration": 50.0}``).
+SWEEP_KEYS: dict[str, str] = _sweep.SWEEP_KEYS
 

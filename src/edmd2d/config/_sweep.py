@@ -27,8 +27,8 @@ _SWEEP_OUTPUT = {"checkpoint_every": (_number(0.0, lo_open=True), OPTIONAL)}
 _SWEEP_TABLES = {"gas": _GAS, "run": _SWEEP_RUN, "output": _SWEEP_OUTPUT}
 _SWEEP = {"replicas": (_integer(1), 1), "seed": (_integer(0), OPTIONAL)}
 
-#: The keys of a sweep's parameter set, each with the table it belongs to: a parameter
-#: set is one flat dict (``{"n": 400, "packing_fraction": 0.3, "duration": 50.0}``).
+# The keys of a sweep's parameter set, each with the table it belongs to
+# (edmd2d.config.SWEEP_KEYS, documented where the package exports it).
 SWEEP_KEYS: dict[str, str] = {
     **{key: table for table, schema in _SWEEP_TABLES.items() for key in schema},
     "species": "gas",

@@ -16,12 +16,13 @@ ROOT = pathlib.Path(__file__).resolve().parents[1]
 MODULES = ["edmd2d", "edmd2d.geometry", "edmd2d.simulation", "edmd2d.builders",
            "edmd2d.reference", "edmd2d.viz", "edmd2d.analysis", "edmd2d.measurements",
            "edmd2d.models", "edmd2d.theory", "edmd2d.checkpoint", "edmd2d.io.gsd",
-           "edmd2d.operations", "edmd2d.io.events", "edmd2d.config", "edmd2d.contacts",
+           "edmd2d.operations", "edmd2d.io.events", "edmd2d.contacts",
            "edmd2d.compress", "edmd2d.ensemble", "edmd2d.physics",
            # (private modules whose objects public modules export: doctest finds an
            # object's examples only in the module that defines it)
            "edmd2d._operations", "edmd2d._validate", "edmd2d.viz._scene",
-           "edmd2d.viz._animation", "edmd2d.viz._save", "edmd2d.reference._loop"]
+           "edmd2d.viz._animation", "edmd2d.viz._save", "edmd2d.reference._loop",
+           "edmd2d.config._run", "edmd2d.config._sweep"]
 
 
 @pytest.mark.parametrize("name", MODULES)

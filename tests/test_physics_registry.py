@@ -133,5 +133,5 @@ def test_the_built_in_families_and_their_keywords():
                                                "gravity", "wall_temperatures",
                                                "thermostat", "growth"]
     for name in ("restitution", "wall_restitution", "tc", "gravity", "thermostat"):
-        assert name in config._model_schema()
-    assert "growth" not in config._model_schema()  # (compression is not a config run)
+        assert name in config._schema._model_schema()
+    assert "growth" not in config._schema._model_schema()  # (compression is not a config run)

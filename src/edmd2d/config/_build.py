@@ -1,0 +1,135 @@
+"""Building the simulation a checked configuration describes (:func:`build`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .. import builders, physics
+from .._validate import argument_of, as_generator
+from ..builders import make_gas, random_gas
+from ..geometry import Wall
+from ..simulation import Simulation
+from ._schema import _KINDS, ConfigError, RunConfig
+
+# Keyword of make_gas or Simulation -> the key of the configuration it comes from.
+_ARGUMENT_KEYS = {
+    "n": ("gas", "n"), "packing_fraction": ("gas", "packing_fraction"),
+    "temperature": ("gas", "temperature"), "radius": ("gas", "radius"),
+    "radii": ("gas", "species"), "masses": ("gas", "mass"), "aspect": ("gas", "aspect"),
+    "periodic": ("gas", "periodic"), "species": ("gas", "species"),
+    "walls": ("walls",), "positions": ("walls",), "velocities": ("walls",),
+    "seed": ("model", "seed"),
+}
+
+
+def _key_of_argument(exc: BaseException) -> tuple:
+    """The configuration key of the argument a library error is about, or ``()``."""
+    name = argument_of(exc)
+    if name in physics.KEYWORDS and physics.KEYWORDS[name].kind:
+        return ("model", name)
+    return _ARGUMENT_KEYS.get(name, ())
+
+
+def build(cfg: RunConfig, seed: int):
+    """The simulation a configuration describes, at time 0.
+
+    Without wall segments or a mixture of masses this is
+    ``edmd2d.make_gas(n, packing_fraction, ..., seed=seed)`` with the ``[model]``
+    keywords (``edmd2d.random_gas`` with ``start = "random"``).  A mixture's species
+    are laid on the lattice at random (species of equal radius told apart by a further
+    random draw) and, if their masses differ,
+    their velocities are drawn for their masses; disks that a wall segment crosses are
+    left out (by :func:`edmd2d.builders.clear_of_walls`, the rule of ``make_gas(...,
+    walls=...)``).
+
+    Parameters
+    ----------
+    cfg : RunConfig
+    seed : int or numpy.random.SeedSequence
+        The seed of all random numbers (``[model] seed``, or one drawn by the caller).
+
+    Returns
+    -------
+    sim : Simulation
+    removed : int
+        Disks left out because a wall segment crossed them.
+
+    Raises
+    ------
+    ConfigError
+        If the library refuses a value (the message is the library's, with the key
+        and line it comes from).
+    """
+    gas, model = cfg.data["gas"], cfg.data["model"]
+    rng = as_generator("seed", seed)
+    species = gas["species"]
+    try:
+        if species is None:
+            radii, masses, radius = None, gas["mass"], gas["radius"]
+        else:
+            radii = np.repeat([s["radius"] for s in species], [s["count"] for s in species])
+            species_masses = np.array([s["mass"] for s in species])
+            masses = float(species_masses[0]) if (species_masses == species_masses[0]).all() \
+                else 1.0
+            radius = 0.5
+        start = (random_gas if gas["start"] == "random" else make_gas)(
+            gas["n"], gas["packing_fraction"], radius=radius, radii=radii, masses=masses,
+            aspect=gas["aspect"], periodic=_box_kind(gas), temperature=gas["temperature"],
+            seed=rng)
+        pos, vel, rad, mass = (start.positions, start.velocities, start.radii,
+                               start.masses.copy())
+        labels = None
+        if species is not None:
+            labels = _species_labels(rad, species, rng)
+            mass = species_masses[labels]
+            if not (species_masses == species_masses[0]).all():
+                vel = builders._maxwell_boltzmann(rng, mass, gas["temperature"],
+                                                  sum(start.box.periodic))
+        walls = []
+        for w in cfg.data["walls"]:
+            if w["polygon"] is not None:
+                walls.extend(Wall.polygon(w["polygon"]))
+            else:
+                walls.append(Wall(tuple(w["start"]), tuple(w["end"])))
+        # (The rule of make_gas(walls=...); the species are labelled before, on the
+        # whole lattice, so that each keeps its count there.)
+        keep = builders.clear_of_walls(pos, rad, walls, start.box)
+        if not keep.any():
+            raise cfg.error(("walls",), "the wall segments cross every disk of the gas")
+        wall_kt = model["wall_temperatures"]
+        if wall_kt is not None:
+            wall_kt = {(int(k) if k.isdigit() else k): v for k, v in wall_kt.items()}
+        sim = Simulation(
+            pos[keep], vel[keep], rad[keep], mass[keep], box=start.box, walls=walls,
+            species=None if labels is None else labels[keep],
+            restitution=(model["restitution"] if not isinstance(model["restitution"], list)
+                         else np.array(model["restitution"])),
+            wall_restitution=model["wall_restitution"], tc=model["tc"],
+            gravity=model["gravity"], wall_temperatures=wall_kt,
+            thermostat=model["thermostat"], seed=rng,
+            **{name: model[name] for name, kw in physics.KEYWORDS.items()
+               if kw.kind in _KINDS and not physics.owner(name).built_in
+               and model.get(name) is not None})
+    except (TypeError, ValueError) as exc:
+        if isinstance(exc, ConfigError):
+            raise
+        raise cfg.error(_key_of_argument(exc), str(exc)) from None
+    return sim, int((~keep).sum())
+
+
+def _box_kind(gas: dict):
+    periodic = gas["periodic"]
+    return tuple(periodic) if isinstance(periodic, list) else periodic
+
+
+def _species_labels(radii: np.ndarray, species: list, rng) -> np.ndarray:
+    """Each disk's species, from its radius (``make_gas`` shuffles the radii over the
+    lattice); among species of equal radius, a random permutation decides."""
+    labels = np.empty(len(radii), np.int64)
+    species_radii = np.array([s["radius"] for s in species])
+    for r in np.unique(species_radii):
+        ids = np.flatnonzero(species_radii == r)
+        members = np.repeat(ids, [species[k]["count"] for k in ids])
+        where = np.flatnonzero(radii == r)
+        labels[where] = members if len(ids) == 1 else rng.permutation(members)
+    return labels

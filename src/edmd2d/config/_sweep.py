@@ -166,8 +166,8 @@ def _check_grid(cfg, grid) -> dict:
         if not isinstance(values, list) or not values:
             raise cfg.error(where + (key,), f"expected a list of values, got {_shown(values)}")
         checked = []
-        for value in values:
-            value, problem = _check_value(key, value)
+        for given in values:
+            value, problem = _check_value(key, given)
             if problem:
                 raise cfg.error(where + (key,), f"each value: {problem}")
             checked.append(value)

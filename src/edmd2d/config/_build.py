@@ -96,25 +96,32 @@ def build(cfg: RunConfig, seed: int):
         keep = builders.clear_of_walls(pos, rad, walls, start.box)
         if not keep.any():
             raise cfg.error(("walls",), "the wall segments cross every disk of the gas")
-        wall_kt = model["wall_temperatures"]
-        if wall_kt is not None:
-            wall_kt = {(int(k) if k.isdigit() else k): v for k, v in wall_kt.items()}
         sim = Simulation(
             pos[keep], vel[keep], rad[keep], mass[keep], box=start.box, walls=walls,
-            species=None if labels is None else labels[keep],
-            restitution=(model["restitution"] if not isinstance(model["restitution"], list)
-                         else np.array(model["restitution"])),
-            wall_restitution=model["wall_restitution"], tc=model["tc"],
-            gravity=model["gravity"], wall_temperatures=wall_kt,
-            thermostat=model["thermostat"], seed=rng,
-            **{name: model[name] for name, kw in physics.KEYWORDS.items()
-               if kw.kind in _KINDS and not physics.owner(name).built_in
-               and model.get(name) is not None})
+            species=None if labels is None else labels[keep], seed=rng,
+            **_physics_keywords(model))
     except (TypeError, ValueError) as exc:
         if isinstance(exc, ConfigError):
             raise
         raise cfg.error(_key_of_argument(exc), str(exc)) from None
     return sim, int((~keep).sum())
+
+
+def _physics_keywords(model: dict) -> dict:
+    """The values ``[model]`` gives the keywords of the registered physics families, as
+    the library takes them: a table of coefficients as an array, the index of a heated
+    wall segment as an integer."""
+    out = {}
+    for name, kw in physics.KEYWORDS.items():
+        value = model.get(name)
+        if value is None or not (kw.kind in _KINDS or kw.kind == "walls"):
+            continue
+        if kw.kind == "coefficients" and isinstance(value, list):
+            value = np.array(value)
+        elif kw.kind == "walls":
+            value = {(int(k) if k.isdigit() else k): v for k, v in value.items()}
+        out[name] = value
+    return out
 
 
 def _box_kind(gas: dict):

@@ -216,11 +216,10 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, contact, gravity, growth):
     sx, sy = unpack_shift(aux)
     dx = S[i, X] - (S[j, X] + sx * gf[0])
     dy = S[i, Y] - (S[j, Y] + sy * gf[1])
-    # The impulse is along the separation d itself, not along a unit normal d / |d|:
-    # the computed unit normal's squared length misses 1 by a rounding that is
-    # positive on average, and each elastic collision then gained 1.4e-16 of the
-    # relative kinetic energy (a drift of 7e-13 in 10^6 collisions); with d and d.d
-    # the rounding errors average out (and no square root is taken).
+    # The impulse is along the separation d itself, not along a unit normal d / |d|,
+    # whose computed squared length misses 1 by a rounding that is positive on
+    # average and makes the energy drift upwards; with d and d.d the rounding errors
+    # average out, and no square root is taken (docs/performance-notes.md, section 4).
     dd = dx * dx + dy * dy
     s = (S[i, VX] - S[j, VX]) * dx + (S[i, VY] - S[j, VY]) * dy
     if growth is not None:

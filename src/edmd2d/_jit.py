@@ -71,7 +71,7 @@ if CACHE:
 
 @contextlib.contextmanager
 def _engine_cache_dir():
-    """numba reads its cache directory when a function is decorated: point it at
+    """Numba reads its cache directory when a function is decorated: point it at
     :data:`CACHE_DIR` for edmd2d's functions only."""
     if CACHE_DIR is None:
         yield

@@ -67,13 +67,9 @@ from pathlib import Path
 import numpy as np
 
 from .. import progress as _progress
+from . import _store
 from ._eos import eos_task
 from ._store import (
-    CSV_FILE,
-    FORMAT,
-    JSON_FILE,
-    TASKS_DIR,
-    VERSION,
     SweepResult,
     _check_names,
     _check_same,
@@ -87,6 +83,19 @@ from ._workers import _call, _meta, _run_on_dask, _tasks, warm
 
 __all__ = ["sweep", "grid", "load", "eos_task", "warm", "SweepResult", "FORMAT",
            "VERSION", "CSV_FILE", "JSON_FILE", "TASKS_DIR"]
+
+# (The constants live with the files they name; their descriptions are here, where the
+# documentation of the public module reads them.)
+#: The format name in ``results.json``; a directory whose file has another is refused.
+FORMAT = _store.FORMAT
+#: The version of that format.
+VERSION = _store.VERSION
+#: The table of results in the output directory.
+CSV_FILE = _store.CSV_FILE
+#: Everything the table holds and more, as JSON, in the output directory.
+JSON_FILE = _store.JSON_FILE
+#: The folder of the tasks' work directories in the output directory.
+TASKS_DIR = _store.TASKS_DIR
 
 
 # ------------------------------------------------------------------ the grid

@@ -19,15 +19,12 @@ import numpy as np
 from .. import _atomic
 from .._version import __version__
 
-#: The format name in ``results.json``; a directory whose file has another is refused.
+# The format of results.json and its version; the files and the folder of the tasks in
+# the output directory (described where edmd2d.ensemble exports them).
 FORMAT = "edmd2d-sweep"
-#: The version of that format.
 VERSION = 1
-#: The table of results in the output directory.
 CSV_FILE = "results.csv"
-#: Everything the table holds and more, as JSON, in the output directory.
 JSON_FILE = "results.json"
-#: The folder of the tasks' work directories in the output directory.
 TASKS_DIR = "tasks"
 
 # The columns of the table before the parameters, between them and the values.

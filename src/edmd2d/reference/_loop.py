@@ -178,6 +178,8 @@ class ReferenceSimulation(CollisionRules):
                  wall_restitution=1.0, tc=0.0, gravity=(0.0, 0.0),
                  wall_temperatures=None, thermostat=None, seed=None, growth=None):
         n = len(positions)
+        # (Required: its default only lets it follow masses as a keyword.)
+        assert box is not None, "ReferenceSimulation needs a box"
         self.box = box
         self.walls = [w if isinstance(w, Wall) else Wall(*w) for w in walls]
         self.p = [[float(x), float(y)] for x, y in positions]
@@ -195,6 +197,7 @@ class ReferenceSimulation(CollisionRules):
         self.collisions = 0
         self.wall_collisions = 0
         self.species = [0] * n if species is None else [int(s) for s in species]
+        self.restitution: float | list[list[float]]
         if np.ndim(restitution) == 0:
             self.restitution = float(restitution)
         else:
@@ -213,7 +216,7 @@ class ReferenceSimulation(CollisionRules):
         # into once its next bounce would come within tc (and a disk that starts at
         # rest touching such a wall); a collision with a disk or a segment that gives it
         # a velocity along the wall's normal frees it.
-        self.resting = [set() for _ in range(n)]
+        self.resting: list[set[int]] = [set() for _ in range(n)]
         names = {"left": 0, "right": 1, "bottom": 2, "top": 3}
         self.wall_kt = {(names[k] if isinstance(k, str) else 4 + k): float(t)
                         for k, t in (wall_temperatures or {}).items()}
@@ -459,7 +462,7 @@ class ReferenceSimulation(CollisionRules):
         return self.kinetic_energy() + self.potential_energy()
 
 
-def _per_disk(value, n):
+def _per_disk(value, n: int) -> list[float]:
     try:
         return [float(value)] * n
     except TypeError:

@@ -88,7 +88,8 @@ class Every(Trigger):
         continued from a checkpoint keeps the times of the run it continues this way.
     """
 
-    def __init__(self, dt=None, collisions=None, seconds=None, *, start=None) -> None:
+    def __init__(self, dt: float | None = None, collisions: int | None = None,
+                 seconds: float | None = None, *, start: float | None = None) -> None:
         given = [name for name, v in (("dt", dt), ("collisions", collisions),
                                       ("seconds", seconds)) if v is not None]
         if len(given) != 1:
@@ -106,6 +107,7 @@ class Every(Trigger):
         self._t0 = sim.time if self.start is None else self.start
         self._k = 1
         if self.start is not None:
+            assert self.dt is not None  # (start goes with dt: __init__)
             # The first k >= 1 with t0 + k dt after now, computed as the times are.
             t = sim.time
             self._k = max(1, math.floor((t - self._t0) / self.dt) + 1)
@@ -135,6 +137,7 @@ class Every(Trigger):
                 self._c_next += self.collisions
                 return True
             return False
+        assert self.seconds is not None  # (exactly one of the three: __init__)
         if now - self._clock >= self.seconds:
             self._clock = now
             return True

@@ -53,7 +53,8 @@ def about(name: str):
     try:
         yield
     except (TypeError, ValueError) as exc:
-        exc.edmd2d_argument = name
+        # (An attribute of edmd2d's own on the exception, which the CLI reads.)
+        exc.edmd2d_argument = name  # type: ignore[union-attr]
         raise
 
 

@@ -302,7 +302,8 @@ def _closed_loops(walls: tuple, tol: float) -> tuple[np.ndarray, ...]:
         at.setdefault(v, []).append(e)
     # Walk from each unvisited edge; a walk through vertices of two edges each that
     # comes back to its start is a loop.
-    loops, loop_edges = [], []
+    loops: list[np.ndarray] = []
+    loop_edges: list[tuple[int, int]] = []
     seen = [False] * len(edges)
     for e0 in range(len(edges)):
         if seen[e0]:

@@ -252,9 +252,8 @@ def degrees_of_freedom(sim) -> tuple[int, tuple[bool, bool]]:
     movable = np.isfinite(sim.masses)
     # (A thermostat's redraws change the momentum too; gravity pushes along its axes.)
     free = bool(movable.all()) and not sim.walls and sim.thermostat is None
-    conserved = tuple(bool(sim.box.periodic[a] and free and sim.gravity[a] == 0.0)
-                      for a in range(2))
-    return 2 * int(movable.sum()) - int(sum(conserved)), conserved
+    x, y = (bool(sim.box.periodic[a] and free and sim.gravity[a] == 0.0) for a in range(2))
+    return 2 * int(movable.sum()) - int(x) - int(y), (x, y)
 
 
 def kinetic_temperature(sim) -> float:
@@ -482,9 +481,9 @@ class Measure(Operation):
         self._area = None if area is None else as_positive_float("area", area)
         self._edges: list[dict] = []
         self._meta: dict | None = None  # (n, n_all, dof, area, area_source) at the start
-        self._movable = None
-        self._box = None
-        self._walls = None
+        self._movable: np.ndarray | None = None
+        self._box: Box | None = None
+        self._walls: tuple[Wall, ...] | None = None
 
     @property
     def blocks(self) -> int:
@@ -515,6 +514,7 @@ class Measure(Operation):
         self._box, self._walls = sim.box, sim.walls
         self._movable = np.isfinite(sim.masses)
         if self._edges:
+            assert self._meta is not None  # (set with the first edge)
             if sim.time < self._edges[-1]["time"] or len(sim) != self._meta["n_all"]:
                 raise ValueError(
                     f"this Measure's window has a boundary at t={self._edges[-1]['time']} "
@@ -537,6 +537,7 @@ class Measure(Operation):
             area, source = _container(sim)
         else:
             area, source = self._area, "given"
+        assert self._movable is not None  # (set by _start, which a run calls first)
         n = int(self._movable.sum())
         box = sim.box
         self._meta = {"n": n, "n_all": len(sim), "area": area, "area_source": source,
@@ -550,6 +551,7 @@ class Measure(Operation):
         if not self._edges:
             self._open(sim)
         else:
+            assert self._movable is not None  # (set by _start, which a run calls first)
             self._edges.append(_edge(sim, self._movable))
 
     def result(self):
@@ -575,6 +577,7 @@ class Measure(Operation):
             tau = np.diff(times)
             duration = float(times[-1] - times[0])
         meta = self._meta
+        assert meta is not None  # (set with the first edge)
         return _from_edges(
             self._edges, tau, duration, n=meta["n"], n_all=meta["n_all"], dof=meta["dof"],
             area=meta["area"], area_source=meta["area_source"], box=self._box,

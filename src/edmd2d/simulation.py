@@ -225,8 +225,8 @@ class Simulation(SimulationBase):
         with about("species"):
             spec = _models.as_species(species, n)
         system = _physics.System(box, len(wall_list), rad, vel, mass, spec, float(t0))
-        g = _physics.Gravity.check(system, gravity=gravity)
-        g = None if g is None else g.g
+        gravity_family = _physics.Gravity.check(system, gravity=gravity)
+        g = None if gravity_family is None else gravity_family.g
         growth = _physics.Growth.check(system, growth=growth)
         with about("positions"):
             pos = _checks.check_in_box(box, pos, rad)

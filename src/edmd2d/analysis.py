@@ -468,7 +468,7 @@ def _voronoi_pairs(pos: np.ndarray, box: Box):
     # crystal configuration (a Delaunay circle cannot be much wider than the largest
     # empty region).
     band = 4.0 * math.sqrt(box.area / n)
-    pts, idx = [pos], [np.arange(n)]
+    images, image_of = [pos], [np.arange(n)]
     sizes = (box.width, box.height)
     for sx in (-1, 0, 1):
         for sy in (-1, 0, 1):
@@ -477,12 +477,12 @@ def _voronoi_pairs(pos: np.ndarray, box: Box):
             shifted = pos + np.array([sx * sizes[0], sy * sizes[1]])
             keep = ((shifted[:, 0] > -band) & (shifted[:, 0] < sizes[0] + band)
                     & (shifted[:, 1] > -band) & (shifted[:, 1] < sizes[1] + band))
-            pts.append(shifted[keep])
-            idx.append(np.flatnonzero(keep))
+            images.append(shifted[keep])
+            image_of.append(np.flatnonzero(keep))
     from scipy import spatial
 
-    pts = np.concatenate(pts)
-    idx = np.concatenate(idx)
+    pts = np.concatenate(images)
+    idx = np.concatenate(image_of)
     tri = spatial.Delaunay(pts)
     s = tri.simplices
     edges = np.concatenate([s[:, [0, 1]], s[:, [1, 2]], s[:, [2, 0]]])

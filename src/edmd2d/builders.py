@@ -600,9 +600,9 @@ def _triangular_sites(n: int, box: Box, spacing_min: float):
         return None
     k = int(np.argmax(np.where(ok, dist, -1.0)))
     rows, cols, sx, sy = int(ny[k]), int(nx[k]), float(ax[k]), float(ay[k])
-    i, j = np.meshgrid(np.arange(cols), np.arange(rows), indexing="xy")
-    i = i.ravel().astype(float)
-    j = j.ravel()
+    grid_i, grid_j = np.meshgrid(np.arange(cols), np.arange(rows), indexing="xy")
+    i = grid_i.ravel().astype(float)
+    j = grid_j.ravel()
     shift = 0.5 * (j % 2) if rows > 1 else 0.0
     if px:
         x = ((i + shift + 0.25) * sx) % box.width

@@ -373,7 +373,7 @@ def _inputs(source, box, radii, walls):
         rad = per_disk("radii", radii, len(pos))
         if (rad <= 0).any():
             raise ValueError(f"radii must be > 0; disks {indices_where(rad <= 0)} are not")
-        segs = as_walls(walls)
+        segs = tuple(as_walls(walls))
     pos = _wrap(np.ascontiguousarray(pos, dtype=np.float64), box)
     ends = np.array([[w.start, w.end] for w in segs], dtype=np.float64).reshape(-1, 2, 2)
     return pos, np.asarray(rad, dtype=np.float64), box, ends

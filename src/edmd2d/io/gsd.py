@@ -102,7 +102,8 @@ class Writer:
         self._file = _gsd_hoomd().open(str(path), mode)
         if new:  # (the gsd library creates files with mode 0640 whatever the umask)
             os.chmod(path, umask_mode())
-        self._start = None  # (time, accumulators) at the first frame written
+        # (time, accumulators) at the first frame written
+        self._start: tuple[float, dict] | None = None
         self._temperatures: list[float] = []
 
     def write(self, sim) -> None:

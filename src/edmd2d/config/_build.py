@@ -25,6 +25,8 @@ _ARGUMENT_KEYS = {
 def _key_of_argument(exc: BaseException) -> tuple:
     """The configuration key of the argument a library error is about, or ``()``."""
     name = argument_of(exc)
+    if name is None:
+        return ()
     if name in physics.KEYWORDS and physics.KEYWORDS[name].kind:
         return ("model", name)
     return _ARGUMENT_KEYS.get(name, ())

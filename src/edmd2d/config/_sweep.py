@@ -24,7 +24,7 @@ from ._schema import (
 # walls (a sweep measures the equation of state of a gas), with two more keys.
 _SWEEP_RUN = {**_RUN, "equilibrate_collisions": (_number(0.0), OPTIONAL)}
 _SWEEP_OUTPUT = {"checkpoint_every": (_number(0.0, lo_open=True), OPTIONAL)}
-_SWEEP_TABLES = {"gas": _GAS, "run": _SWEEP_RUN, "output": _SWEEP_OUTPUT}
+_SWEEP_TABLES: dict[str, dict] = {"gas": _GAS, "run": _SWEEP_RUN, "output": _SWEEP_OUTPUT}
 _SWEEP = {"replicas": (_integer(1), 1), "seed": (_integer(0), OPTIONAL)}
 
 # The keys of a sweep's parameter set, each with the table it belongs to

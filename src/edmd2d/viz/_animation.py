@@ -16,6 +16,7 @@ from .._validate import as_count, as_positive_float
 from ..operations import RecordFrames, Snapshot
 from ..simulation import Simulation
 from ._colors import ColorBy
+from ._layout import _figure_of
 from ._scene import _Scene
 from ._writers import _SAVEFIG_GRABBERS, _ffmpeg_executable, _save_animation
 
@@ -222,6 +223,7 @@ class SimulationAnimation(manim.FuncAnimation):
 
     def __init__(self, scene: _Scene, frame_times: np.ndarray, fps: float, *, blit: bool):
         self._scene = scene
+        assert isinstance(scene.sim, Simulation)  # (animate takes a simulation)
         self.sim = scene.sim
         self.ax = scene.ax
         self.frame_times = frame_times
@@ -229,7 +231,7 @@ class SimulationAnimation(manim.FuncAnimation):
         self._played = False  # a frame has been drawn: the simulation may have moved on
         self._writer_draws = False  # saving with a writer whose grab_frame draws the figure
         super().__init__(
-            scene.ax.figure, self.goto_frame, frames=len(frame_times),
+            _figure_of(scene.ax), self.goto_frame, frames=len(frame_times),
             init_func=scene.update, interval=1000.0 / fps, repeat=False, blit=blit,
             cache_frame_data=False,
         )
@@ -340,9 +342,10 @@ class SimulationAnimation(manim.FuncAnimation):
         # While saving, matplotlib draws the canvas after each frame's update and the
         # writer then draws the figure again in savefig: the first drawing is skipped for
         # writers known to call savefig (a third of the time of a 1000-disk frame).
-        if self._writer_draws and self._fig.canvas.is_saving():
+        if self._writer_draws and self.ax.figure.canvas.is_saving():
             return
-        super()._post_draw(framedata, blit)
+        # (matplotlib's own hook, which its type stubs leave out)
+        super()._post_draw(framedata, blit)  # type: ignore[misc]
 
     def _check_can_start(self, k: int = 0) -> None:
         t = float(self.frame_times[k])

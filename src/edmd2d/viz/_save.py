@@ -12,6 +12,7 @@ import matplotlib.pyplot as plt
 from ..operations import Snapshot
 from ..simulation import Simulation
 from ._animation import SimulationAnimation
+from ._layout import _figure_of
 from ._scene import draw
 from ._writers import _GIF_SUFFIXES, _VIDEO_SUFFIXES, _check_folder, _save_animation
 
@@ -108,10 +109,11 @@ def save(
             raise ValueError("colors applies to animations saved as .gif, not to stills")
         _check_folder(path)
         ax = draw(obj, **kwargs)
+        fig = _figure_of(ax)  # (draw made it)
         try:
-            ax.figure.savefig(path, dpi=dpi)
+            fig.savefig(path, dpi=dpi)
         finally:
-            plt.close(ax.figure)
+            plt.close(fig)
         return path
     if not isinstance(obj, manim.Animation):
         raise TypeError(

@@ -223,7 +223,6 @@ class SimulationAnimation(manim.FuncAnimation):
 
     def __init__(self, scene: _Scene, frame_times: np.ndarray, fps: float, *, blit: bool):
         self._scene = scene
-        assert isinstance(scene.sim, Simulation)  # (animate takes a simulation)
         self.sim = scene.sim
         self.ax = scene.ax
         self.frame_times = frame_times
@@ -259,6 +258,8 @@ class SimulationAnimation(manim.FuncAnimation):
         """
         self._check_can_start(k)
         self._played = True
+        # (A simulation: FramesAnimation, whose frames are snapshots, has its own.)
+        assert isinstance(self.sim, Simulation)
         self.sim.advance(until=float(self.frame_times[k]))
         return self._scene.update()
 

@@ -268,7 +268,8 @@ def read(path, frame: int = -1, *, radius_scale: float = 1.0, **physics):
     if xy != 0.0:
         raise ValueError(f"frame {frame} of {path} has a tilted box (xy = {xy}); "
                          "edmd2d boxes are rectangles")
-    periodic = tuple(bool(v) for v in log.get("edmd2d/periodic", np.array([1, 1])))
+    px, py = log.get("edmd2d/periodic", np.array([1, 1]))
+    periodic = (bool(px), bool(py))
     box = Box(lx, ly, periodic=periodic)
     centre = np.array([lx / 2.0, ly / 2.0])
     n = int(f.particles.N)

@@ -57,7 +57,7 @@ CLOSE_PACKING = ETA_CLOSE_PACKED
 DEFAULT_MAX_PRESSURE = 1e9
 
 
-def packing_fraction(sim) -> float:
+def packing_fraction(sim: Simulation) -> float:
     """The fraction of the container's area the disks cover now:
     ``sum(pi r^2) / A``, with ``A`` from :func:`edmd2d.measurements.container_area`.
 
@@ -134,9 +134,10 @@ class Compression:
                 f"collisions={int(self.collisions[-1]) if len(self.collisions) else 0})")
 
 
-def compress(system, target: float | None = None, *, rate: float = 1e-3,
+def compress(system: Simulation, target: float | None = None, *, rate: float = 1e-3,
              max_pressure: float = DEFAULT_MAX_PRESSURE, temperature: float | None = None,
-             rescale_every: float = 2.0, progress=False) -> Compression:
+             rescale_every: float = 2.0,
+             progress: _progress.ProgressArg = False) -> Compression:
     """Compress a hard-disk system by growing its disks, to a packing fraction or until
     it jams.
 

@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import progress as _progress
 from ._facade import require_simulation
@@ -20,6 +22,9 @@ from ._operations import Blocks, Operation, Trigger, run
 from ._sums import dot, weighted_sum
 from ._validate import as_count, as_positive_float
 from .geometry import Box, Wall, container
+
+if TYPE_CHECKING:  # (for the annotations only: simulation imports this module)
+    from .simulation import Simulation
 
 __all__ = ["Measurement", "measure", "Measure", "kinetic_temperature",
            "degrees_of_freedom", "container_area", "Cooling", "cooling"]
@@ -219,7 +224,7 @@ class Measurement:
 _SUMMARY_SIDES = 8
 
 
-def degrees_of_freedom(sim) -> tuple[int, tuple[bool, bool]]:
+def degrees_of_freedom(sim: Simulation) -> tuple[int, tuple[bool, bool]]:
     """Kinetic degrees of freedom of the movable disks and the conserved momentum axes.
 
     A Cartesian component of the total momentum is conserved when its axis is periodic
@@ -256,7 +261,7 @@ def degrees_of_freedom(sim) -> tuple[int, tuple[bool, bool]]:
     return 2 * int(movable.sum()) - int(x) - int(y), (x, y)
 
 
-def kinetic_temperature(sim) -> float:
+def kinetic_temperature(sim: Simulation) -> float:
     """The kinetic temperature ``kT`` of the movable disks now (2D, ``k_B = 1``).
 
     ``kT = (sum m v^2 - sum_c P_c^2 / M) / f``: each disk has two translational degrees
@@ -297,8 +302,8 @@ def kinetic_temperature(sim) -> float:
     return (twice_ke - cm) / dof
 
 
-def measure(sim, duration: float, *, blocks: int = 10,
-            area: float | None = None, progress=False) -> Measurement:
+def measure(sim: Simulation, duration: float, *, blocks: int = 10,
+            area: float | None = None, progress: _progress.ProgressArg = False) -> Measurement:
     """Run ``sim`` for ``duration`` and measure pressure, temperature and collision rates.
 
     The window is cut into ``blocks`` equal sub-windows; the values returned are the
@@ -495,7 +500,7 @@ class Measure(Operation):
         """The block boundaries so far (the first is the window's start), shape (B + 1,)."""
         return np.array([e["time"] for e in self._edges])
 
-    def begin(self, sim) -> None:
+    def begin(self, sim: Simulation) -> None:
         """Open the window at the run's start (or wait for the start of the window of
         a :class:`~edmd2d.operations.Blocks` trigger), or check that a window already
         open goes on with the same simulation.
@@ -523,6 +528,7 @@ class Measure(Operation):
             return
         if isinstance(self.trigger, Blocks):
             t0 = self.trigger.window_start
+            assert t0 is not None  # (the run started the trigger before this)
             if t0 < sim.time:
                 raise ValueError(
                     f"the window of this Measure starts at t={t0}, before the run's start "
@@ -554,7 +560,7 @@ class Measure(Operation):
             assert self._movable is not None  # (set by _start, which a run calls first)
             self._edges.append(_edge(sim, self._movable))
 
-    def result(self):
+    def result(self) -> Measurement:
         """The measurement over the blocks ended so far.
 
         Returns
@@ -797,7 +803,7 @@ def _frozen(values: np.ndarray) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- containers
-def container_area(sim) -> float:
+def container_area(sim: Simulation) -> float:
     """The area of the container that holds the movable disks of ``sim``: the box's,
     or that of the regions bounded by closed polygons of its wall segments that hold
     a movable disk's centre (the rules are those of :func:`edmd2d.geometry.container`).
@@ -858,7 +864,7 @@ class Cooling:
     dissipated_energy: np.ndarray
 
 
-def cooling(sim, times) -> Cooling:
+def cooling(sim: Simulation, times: ArrayLike) -> Cooling:
     """Run ``sim`` through the increasing ``times`` and sample how it cools.
 
     Parameters
@@ -896,7 +902,7 @@ def cooling(sim, times) -> Cooling:
     for tk in t:
         sim.advance(until=float(tk))
         c, lost = sim.counts.collisions, sim.dissipated_energy()
-        if c0 is None:
+        if c0 is None or e0 is None:  # (the first sample: both are set together)
             c0, e0 = c, lost
         rows.append((2.0 * (c - c0) / n_all, sim.kinetic_energy(), kinetic_temperature(sim),
                      lost - e0))

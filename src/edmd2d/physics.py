@@ -547,7 +547,8 @@ class Growth(Family):
                 raise ValueError(f"growth must be >= 0 (a rate per unit time), got {value}")
         return cls(value) if value > 0.0 else None
 
-    def check_combination(self, model, gravity) -> None:
+    def check_combination(self, model: _models.Model | None,
+                          gravity: np.ndarray | None) -> None:
         """Refuse growth with a ``model`` (restitution below 1, heated walls, a
         thermostat) or with ``gravity``: it is for elastic disks in straight flight.
 

@@ -43,8 +43,10 @@ from __future__ import annotations
 import math
 import os
 import string
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import measurements as _measurements
 from .. import physics as _physics
@@ -95,7 +97,7 @@ class Writer:
     3.0
     """
 
-    def __init__(self, path, mode: str = "w") -> None:
+    def __init__(self, path: str | os.PathLike[str], mode: str = "w") -> None:
         if mode not in ("w", "a"):
             raise ValueError(f"mode must be 'w' or 'a', got {mode!r}")
         new = mode == "w" or not os.path.exists(path)
@@ -106,7 +108,7 @@ class Writer:
         self._start: tuple[float, dict] | None = None
         self._temperatures: list[float] = []
 
-    def write(self, sim) -> None:
+    def write(self, sim: Simulation) -> None:
         """Append the state of ``sim`` at its current time as a frame.
 
         Parameters
@@ -200,7 +202,8 @@ def _frame(sim, writer: Writer):
     return frame
 
 
-def record(sim, path, times, mode: str = "w") -> None:
+def record(sim: Simulation, path: str | os.PathLike[str], times: ArrayLike,
+           mode: str = "w") -> None:
     """Advance ``sim`` to each of ``times`` (increasing, not before ``sim.time``) and
     write a frame there.
 
@@ -222,7 +225,8 @@ def record(sim, path, times, mode: str = "w") -> None:
             out.write(sim)
 
 
-def read(path, frame: int = -1, *, radius_scale: float = 1.0, **physics):
+def read(path: str | os.PathLike[str], frame: int = -1, *, radius_scale: float = 1.0,
+         **physics: Any) -> Simulation:
     """A :class:`~edmd2d.Simulation` from a frame of a GSD file.
 
     Parameters
@@ -335,7 +339,7 @@ class WriteGSD(Operation):
         Create the file (replacing one that exists) or append to it.
     """
 
-    def __init__(self, path, trigger: Trigger, mode: str = "w") -> None:
+    def __init__(self, path: str | os.PathLike[str], trigger: Trigger, mode: str = "w") -> None:
         super().__init__(trigger)
         self.writer = Writer(path, mode)
 
@@ -348,7 +352,7 @@ class WriteGSD(Operation):
         self.writer.close()
 
 
-def describe(path) -> dict:
+def describe(path: str | os.PathLike[str]) -> dict:
     """What a GSD file holds: its frames, the times they span, and the disks, box,
     species and walls of its last frame.
 
@@ -421,7 +425,7 @@ def describe(path) -> dict:
     }
 
 
-def copy_until(source, target, time: float) -> None:
+def copy_until(source: str | os.PathLike[str], target: str | os.PathLike[str], time: float) -> None:
     """Make ``target`` hold the frames of ``source`` up to the time ``time``, those a
     run continued from a checkpoint at ``time`` goes on from (later ones were written
     after the checkpoint).  ``target`` is replaced atomically; it may be ``source``.

@@ -48,6 +48,7 @@ import sys
 import textwrap
 import time as _time
 import zipfile
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
@@ -93,7 +94,7 @@ def _say(text: str, stream=None) -> None:
         os.close(devnull)
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line.
 
     Parameters

@@ -32,7 +32,8 @@ def _key_of_argument(exc: BaseException) -> tuple:
     return _ARGUMENT_KEYS.get(name, ())
 
 
-def build(cfg: RunConfig, seed: int):
+def build(cfg: RunConfig,
+          seed: int | np.random.SeedSequence | None) -> tuple[Simulation, int]:
     """The simulation a configuration describes, at time 0.
 
     Without wall segments or a mixture of masses this is

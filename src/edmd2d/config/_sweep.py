@@ -4,6 +4,7 @@ one parameter set of a sweep as a run configuration (:func:`task_config`)."""
 from __future__ import annotations
 
 import itertools
+import os
 
 from ._lines import _shown, _unknown
 from ._run import _parse, _read
@@ -35,7 +36,7 @@ SWEEP_KEYS: dict[str, str] = {
 }
 
 
-def load_sweep(path) -> RunConfig:
+def load_sweep(path: str | os.PathLike[str]) -> RunConfig:
     """Read and check the sweep configuration file ``path`` (``edmd2d sweep``).
 
     A sweep configuration has the ``[gas]`` and ``[run]`` tables of a run

@@ -21,6 +21,8 @@ _COLOR_MODES = ("speed", "species", "mass")
 _BAD_COLOR = "0.45"
 
 ColorBy = str | Sequence | np.ndarray | Callable | None
+# A matplotlib colour: a name or hex string ("C0", "0.15", "#1f77b4"), or RGB(A) floats.
+Color = str | tuple[float, float, float] | tuple[float, float, float, float]
 
 
 class _ColorScheme:

@@ -3,8 +3,10 @@ image, with every check made before the first frame is drawn."""
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import matplotlib.animation as manim
 import matplotlib.pyplot as plt
@@ -18,14 +20,14 @@ from ._writers import _GIF_SUFFIXES, _VIDEO_SUFFIXES, _check_folder, _save_anima
 
 
 def save(
-    obj,
-    path,
+    obj: manim.Animation | Simulation | Snapshot,
+    path: str | os.PathLike[str],
     *,
     fps: float | None = None,
     dpi: float | None = None,
     colors: int | None = None,
     progress: bool | Callable[[int, int | None], None] = True,
-    **kwargs,
+    **kwargs: Any,
 ) -> Path:
     """Write an animation to a video or GIF, or a simulation's current state to an image.
 

@@ -19,7 +19,7 @@ from matplotlib.transforms import Bbox, TransformedBbox
 from .._validate import as_count, as_positive_float, indices_where
 from ..operations import Snapshot
 from ..simulation import Simulation
-from ._colors import ColorBy, _ColorScheme
+from ._colors import Color, ColorBy, _ColorScheme
 from ._layout import (
     _FIG_EDGE,
     _LABEL_GAP_PT,
@@ -40,13 +40,13 @@ def draw(
     ax: Axes | None = None,
     *,
     color_by: ColorBy = "speed",
-    cmap=None,
+    cmap: str | mcolors.Colormap | None = None,
     vmin: float | None = None,
     vmax: float | None = None,
-    color="C0",
-    edgecolor="0.15",
+    color: Color = "C0",
+    edgecolor: Color = "0.15",
     linewidth: float | None = None,
-    wall_color="k",
+    wall_color: Color = "k",
     colorbar: bool = False,
     show_time: bool = False,
     margin: float = 0.02,

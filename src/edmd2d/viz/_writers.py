@@ -7,7 +7,7 @@ import io
 import shutil
 import sys
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
 import matplotlib as mpl
 import matplotlib.animation as manim
@@ -216,7 +216,7 @@ class TextProgress:
         Characters of the whole line.
     """
 
-    def __init__(self, stream=None, width: int = 60) -> None:
+    def __init__(self, stream: TextIO | None = None, width: int = 60) -> None:
         self.stream = sys.stderr if stream is None else stream
         self.width = as_count("width", width)
         self._bar: Any = None  # (a tqdm bar from the first frame on)

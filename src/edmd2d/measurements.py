@@ -543,7 +543,7 @@ class Measure(Operation):
             area, source = _container(sim)
         else:
             area, source = self._area, "given"
-        assert self._movable is not None  # (set by _start, which a run calls first)
+        assert self._movable is not None  # (set by begin, which a run calls first)
         n = int(self._movable.sum())
         box = sim.box
         self._meta = {"n": n, "n_all": len(sim), "area": area, "area_source": source,
@@ -557,7 +557,7 @@ class Measure(Operation):
         if not self._edges:
             self._open(sim)
         else:
-            assert self._movable is not None  # (set by _start, which a run calls first)
+            assert self._movable is not None  # (set by begin, which a run calls first)
             self._edges.append(_edge(sim, self._movable))
 
     def result(self) -> Measurement:

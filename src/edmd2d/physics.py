@@ -156,7 +156,7 @@ class Family:
         dict
         """
         if not dataclasses.is_dataclass(self):
-            raise TypeError(f"{type(self).__name__} is not a dataclass: it defines state()")
+            raise TypeError(f"{type(self).__name__} is not a dataclass: it must define state()")
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
 
     @classmethod
@@ -256,7 +256,7 @@ class Restitution(Family):
         Restitution
             Elastic (all coefficients 1) included: :attr:`elastic` tells.
         """
-        assert system is not None  # (the callers hand every family the system)
+        assert system is not None  # (checked with the system, which it needs)
         species = system.species
         scalar = np.ndim(restitution) == 0
         with about("restitution"):
@@ -408,7 +408,7 @@ class HeatedWalls(Family):
         HeatedWalls
             With no wall heated when ``wall_temperatures`` is ``None``.
         """
-        assert system is not None  # (the callers hand every family the system)
+        assert system is not None  # (checked with the system, which it needs)
         with about("wall_temperatures"):
             return cls(_wall_temperatures(wall_temperatures, system.box, system.n_segments))
 

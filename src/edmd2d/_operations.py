@@ -12,11 +12,17 @@ from __future__ import annotations
 
 import math
 import time as _time
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import progress as _progress
 from ._validate import as_count, as_float_array, as_positive_float
+
+if TYPE_CHECKING:  # (for the annotations only: simulation imports this module)
+    from .simulation import Simulation
 
 __all__ = ["Trigger", "Every", "At", "Blocks", "Operation", "Callback",
            "RecordTrajectory", "RecordFrames", "Snapshot", "run", "WALL_CLOCK_SLICE"]
@@ -41,7 +47,7 @@ class Trigger:
         """
         return math.inf
 
-    def collisions_left(self, sim) -> int | None:
+    def collisions_left(self, sim: Simulation) -> int | None:
         """Collisions until the next firing, or ``None``.
 
         Parameters
@@ -54,7 +60,7 @@ class Trigger:
         """
         return None
 
-    def due(self, sim, now: float) -> bool:
+    def due(self, sim: Simulation, now: float) -> bool:
         """Whether to fire at this stop (and, if so, set the next firing).
 
         Parameters
@@ -88,7 +94,8 @@ class Every(Trigger):
         continued from a checkpoint keeps the times of the run it continues this way.
     """
 
-    def __init__(self, dt=None, collisions=None, seconds=None, *, start=None) -> None:
+    def __init__(self, dt: float | None = None, collisions: int | None = None,
+                 seconds: float | None = None, *, start: float | None = None) -> None:
         given = [name for name, v in (("dt", dt), ("collisions", collisions),
                                       ("seconds", seconds)) if v is not None]
         if len(given) != 1:
@@ -106,6 +113,7 @@ class Every(Trigger):
         self._t0 = sim.time if self.start is None else self.start
         self._k = 1
         if self.start is not None:
+            assert self.dt is not None  # (start goes with dt: __init__)
             # The first k >= 1 with t0 + k dt after now, computed as the times are.
             t = sim.time
             self._k = max(1, math.floor((t - self._t0) / self.dt) + 1)
@@ -119,12 +127,12 @@ class Every(Trigger):
     def next_time(self) -> float:
         return self._t0 + self._k * self.dt if self.dt is not None else math.inf
 
-    def collisions_left(self, sim):
+    def collisions_left(self, sim: Simulation) -> int | None:
         if self.collisions is None:
             return None
         return max(self._c_next - sim.counts.collisions, 0)
 
-    def due(self, sim, now: float) -> bool:
+    def due(self, sim: Simulation, now: float) -> bool:
         if self.dt is not None:
             if sim.time >= self.next_time():
                 self._k += 1
@@ -135,6 +143,7 @@ class Every(Trigger):
                 self._c_next += self.collisions
                 return True
             return False
+        assert self.seconds is not None  # (exactly one of the three: __init__)
         if now - self._clock >= self.seconds:
             self._clock = now
             return True
@@ -149,7 +158,7 @@ class At(Trigger):
     times : array_like of float
     """
 
-    def __init__(self, times) -> None:
+    def __init__(self, times: ArrayLike) -> None:
         times = np.sort(np.atleast_1d(as_float_array("times", times, (None,))))
         self.times = times
 
@@ -159,7 +168,7 @@ class At(Trigger):
     def next_time(self) -> float:
         return float(self.times[self._k]) if self._k < len(self.times) else math.inf
 
-    def due(self, sim, now: float) -> bool:
+    def due(self, sim: Simulation, now: float) -> bool:
         fired = False
         while self._k < len(self.times) and self.times[self._k] <= sim.time:
             self._k += 1
@@ -192,7 +201,8 @@ class Blocks(Trigger):
         the window (block ``b`` ends at ``start + duration * b / blocks``).
     """
 
-    def __init__(self, duration, blocks=10, *, start=None, count=None) -> None:
+    def __init__(self, duration: float, blocks: int = 10, *, start: float | None = None,
+                 count: int | None = None) -> None:
         self.duration = as_positive_float("duration", duration)
         self.blocks = as_count("blocks", blocks, minimum=1)
         self.start = None if start is None else float(as_float_array("start", start, ()))
@@ -247,7 +257,7 @@ class Blocks(Trigger):
     def next_time(self) -> float:
         return self.edge(self._b) if self._b <= self.count else math.inf
 
-    def due(self, sim, now: float) -> bool:
+    def due(self, sim: Simulation, now: float) -> bool:
         fired = False
         while self._b <= self.count and self.edge(self._b) <= sim.time:
             self._b += 1
@@ -268,7 +278,7 @@ class Operation:
             raise TypeError(f"trigger must be an edmd2d.operations.Trigger, got {trigger!r}")
         self.trigger = trigger
 
-    def begin(self, sim) -> None:
+    def begin(self, sim: Simulation) -> None:
         """Called once when a run starts, after the triggers have started.
 
         Parameters
@@ -293,7 +303,7 @@ class Callback(Operation):
     trigger : Trigger
     """
 
-    def __init__(self, function, trigger: Trigger) -> None:
+    def __init__(self, function: Callable[[Simulation], Any], trigger: Trigger) -> None:
         super().__init__(trigger)
         if not callable(function):
             raise TypeError(f"function must be callable, got {function!r}")
@@ -337,7 +347,7 @@ class RecordTrajectory(Operation):
         self._pos: list[np.ndarray] = []
         self._vel: list[np.ndarray] = []
 
-    def begin(self, sim) -> None:
+    def begin(self, sim: Simulation) -> None:
         """Record the state at the run's start if ``include_start`` (and nothing was
         recorded yet).
 
@@ -395,7 +405,7 @@ class Snapshot:
     __slots__ = ("time", "positions", "unwrapped_positions", "velocities", "radii",
                  "masses", "species", "box", "walls", "counts")
 
-    def __init__(self, sim) -> None:
+    def __init__(self, sim: Simulation) -> None:
         self.time = sim.time
         self.positions = sim.positions
         self.unwrapped_positions = sim.unwrapped_positions
@@ -445,7 +455,7 @@ class RecordFrames(Operation):
         self.include_start = bool(include_start)
         self.frames: list[Snapshot] = []
 
-    def begin(self, sim) -> None:
+    def begin(self, sim: Simulation) -> None:
         """Take a frame at the run's start if ``include_start`` (and none was taken
         yet).
 
@@ -465,7 +475,9 @@ class RecordFrames(Operation):
         return np.array([f.time for f in self.frames], dtype=float)
 
 
-def run(sim, until=None, collisions=None, operations=(), progress=False):
+def run(sim: Simulation, until: float | None = None, collisions: int | None = None,
+        operations: Iterable[Operation] = (),
+        progress: _progress.ProgressArg = False) -> Simulation:
     """Advance ``sim`` to ``until`` (and/or by ``collisions``), firing ``operations``.
 
     Parameters
@@ -510,8 +522,8 @@ def run(sim, until=None, collisions=None, operations=(), progress=False):
                       for o in operations)
         while True:
             stop = min([t_end] + [o.trigger.next_time() for o in operations])
-            left = [o.trigger.collisions_left(sim) for o in operations]
-            left = [k for k in left if k is not None]
+            left = [n_left for o in operations
+                    if (n_left := o.trigger.collisions_left(sim)) is not None]
             budget = c_end - sim.counts.collisions
             if left:
                 budget = min(budget, *left)

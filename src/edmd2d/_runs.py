@@ -26,6 +26,7 @@ metadata, and says so in its status; what it measured before is kept.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 from . import checkpoint as _checkpoint
@@ -174,6 +175,7 @@ class RunProtocol:
                 self._equilibrate(until, periodic, progress)
             if self.equilibrated:
                 end = self.window_end if until is None else until
+                assert end is not None  # (the window's start, so its end, is known)
                 if sim.time < end or self.measure is None:
                     self._measure(end, periodic, progress)
         except KeyboardInterrupt:
@@ -189,7 +191,8 @@ class RunProtocol:
         self.save()
         return status
 
-    def _equilibrate(self, until, periodic: list, progress) -> None:
+    def _equilibrate(self, until: float | None, periodic: Callable[[], list[_op.Operation]],
+                     progress) -> None:
         sim, run, meta = self.sim, self.run, self.meta
         if run.get("equilibrate_collisions") is not None:
             left = round(run["equilibrate_collisions"] * len(sim)) - sim.counts.collisions
@@ -206,14 +209,15 @@ class RunProtocol:
         if self.equilibrated:
             self.save()
 
-    def _measure(self, until: float, periodic: list, progress) -> None:
+    def _measure(self, until: float, periodic: Callable[[], list[_op.Operation]],
+                 progress) -> None:
         sim = self.sim
         count = self.blocks_until(until)
         if self.measure is None:
             self.measure = _op.Measure(self._blocks(count))
         else:
             self.measure = _op.Measure.from_state(self.meta["measure"], count=count)
-        operations = [self.measure]
+        operations: list[_op.Operation] = [self.measure]
         if self.on_block is not None:
             if self.measure.blocks == 0 and sim.time == self.meta["window_start"]:
                 self.on_block(sim, self.measure)  # (the window opens now)
@@ -225,14 +229,14 @@ class RunProtocol:
         if sim.time < until:
             sim.run(until=until, operations=operations + periodic(), progress=progress)
 
-    def _periodic(self, writer):
+    def _periodic(self, writer) -> Callable[[], list[_op.Operation]]:
         """A maker of the operations of the whole run (made anew for each
         :meth:`~edmd2d.Simulation.run`, since a run closes its operations; the GSD
         writer stays open across them)."""
         out, t0 = self.output, self.meta["t_start"]
 
-        def make() -> list:
-            ops = []
+        def make() -> list[_op.Operation]:
+            ops: list[_op.Operation] = []
             if writer is not None:
                 ops.append(_op.Callback(writer.write, _op.Every(dt=out["gsd_every"],
                                                                 start=t0)))

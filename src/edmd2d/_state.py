@@ -108,6 +108,23 @@ class EngineState:
     # Per-disk columns that are views into the rows of S and E (loop.row_views).
     ROW_VIEWS = ("stamp", "nxt", "prv", "qt", "tcand", "invm")
 
+    # Installed together by one ``vars(self).update`` (see :meth:`tables`): the tables,
+    # the queue's other arrays and the per-disk column views into the tables.
+    S: np.ndarray
+    E: np.ndarray
+    hv: np.ndarray
+    qhead: np.ndarray
+    qs: np.ndarray
+    qf: np.ndarray
+    stamp: np.ndarray
+    nxt: np.ndarray
+    prv: np.ndarray
+    qt: np.ndarray
+    tcand: np.ndarray
+    invm: np.ndarray
+    # The batches of events that :meth:`record_events` collects.
+    recorded: list[np.ndarray]
+
     def __init__(self, box, walls, pos, vel, rad, mass, time, *, species, model, gravity,
                  growth, cell_size, families) -> None:
         n = len(pos)
@@ -201,7 +218,8 @@ class EngineState:
                 "written by an incompatible version of edmd2d")
         tables = []
         for name in ("S", "E"):  # (back on 64-byte boundaries: a copy may not be)
-            table = aligned_rows(*state[name].shape, state[name].dtype)
+            rows, width = state[name].shape
+            table = aligned_rows(rows, width, state[name].dtype)
             table[:] = state.pop(name)
             tables.append(table)
         state.update(self.tables(*tables, *(state.pop(name) for name in

@@ -12,6 +12,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import numbers
+from collections.abc import Iterator
 
 import numpy as np
 
@@ -23,7 +24,7 @@ _MAX_COUNT = int(np.iinfo(np.int64).max)
 
 
 @contextlib.contextmanager
-def about(name: str):
+def about(name: str) -> Iterator[None]:
     """Mark the errors (``TypeError``, ``ValueError``) raised inside as being about the
     argument ``name``, so that a caller (the configuration loader) can point at its own
     key for that argument without reading the message.
@@ -53,7 +54,8 @@ def about(name: str):
     try:
         yield
     except (TypeError, ValueError) as exc:
-        exc.edmd2d_argument = name
+        # (An attribute of edmd2d's own on the exception, which the CLI reads.)
+        exc.edmd2d_argument = name  # type: ignore[union-attr]
         raise
 
 

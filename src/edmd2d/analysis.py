@@ -10,8 +10,10 @@ quick.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import _operations
 from ._sums import dot
@@ -87,8 +89,9 @@ def _min_image(d: np.ndarray, box: Box) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- g(r)
-def radial_distribution(source, box: Box | None = None, *, r_max: float | None = None,
-                        bins: int = 100, margin: float | None = None):
+def radial_distribution(source: Simulation | ArrayLike, box: Box | None = None, *,
+                        r_max: float | None = None, bins: int = 100,
+                        margin: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """The radial distribution function g(r), averaged over disks (and frames).
 
     ``g(r)`` is the number of pairs at distance ``r`` relative to that of ideal (uniform,
@@ -217,7 +220,8 @@ def _velocities_and_masses(source, masses):
     return vel, mass
 
 
-def speed_distribution(source, *, bins: int = 50, v_max: float | None = None):
+def speed_distribution(source: Simulation | ArrayLike, *, bins: int = 50,
+                       v_max: float | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Histogram of the speeds ``|v|`` as a probability density.
 
     Compare with :func:`edmd2d.theory.maxwell_boltzmann_speed_pdf`, the 2D
@@ -256,7 +260,8 @@ def speed_distribution(source, *, bins: int = 50, v_max: float | None = None):
     return 0.5 * (edges[1:] + edges[:-1]), density
 
 
-def maxwell_boltzmann_test(source, *, masses=None, temperature: float | None = None):
+def maxwell_boltzmann_test(source: Simulation | ArrayLike, *, masses: ArrayLike | None = None,
+                           temperature: float | None = None) -> Any:
     """Kolmogorov-Smirnov test of the velocities against 2D Maxwell-Boltzmann.
 
     In 2D the kinetic energy ``e = m v^2 / 2`` of a disk in equilibrium is exponentially
@@ -311,7 +316,7 @@ def maxwell_boltzmann_test(source, *, masses=None, temperature: float | None = N
 
 
 # --------------------------------------------------------------------------- MSD
-def trajectory(sim, interval: float, frames: int):
+def trajectory(sim: Simulation, interval: float, frames: int) -> tuple[np.ndarray, np.ndarray]:
     """Advance ``sim`` and record its unwrapped positions at equal time steps.
 
     One run with a :class:`~edmd2d.operations.RecordTrajectory` at the frame times;
@@ -344,7 +349,8 @@ def trajectory(sim, interval: float, frames: int):
     return times, record.positions
 
 
-def mean_squared_displacement(positions, *, max_lag: int | None = None) -> np.ndarray:
+def mean_squared_displacement(positions: ArrayLike, *,
+                              max_lag: int | None = None) -> np.ndarray:
     """Mean squared displacement from unwrapped positions at equal time steps.
 
     ``msd[k] = < |x_i(t + k dt) - x_i(t)|^2 >`` averaged over all disks ``i`` and all
@@ -390,7 +396,8 @@ def mean_squared_displacement(positions, *, max_lag: int | None = None) -> np.nd
 
 
 # --------------------------------------------------------------------------- psi_6
-def hexatic_order(source, box: Box | None = None, *, neighbors="voronoi"):
+def hexatic_order(source: Simulation | ArrayLike, box: Box | None = None, *,
+                  neighbors: str | float = "voronoi") -> tuple[complex, np.ndarray]:
     """The hexatic bond-orientational order parameter psi_6, per disk and global.
 
     ``psi_6(j) = (1 / n_j) sum_k exp(6 i theta_jk)`` over the ``n_j`` neighbours ``k`` of
@@ -468,7 +475,7 @@ def _voronoi_pairs(pos: np.ndarray, box: Box):
     # crystal configuration (a Delaunay circle cannot be much wider than the largest
     # empty region).
     band = 4.0 * math.sqrt(box.area / n)
-    pts, idx = [pos], [np.arange(n)]
+    images, image_of = [pos], [np.arange(n)]
     sizes = (box.width, box.height)
     for sx in (-1, 0, 1):
         for sy in (-1, 0, 1):
@@ -477,12 +484,12 @@ def _voronoi_pairs(pos: np.ndarray, box: Box):
             shifted = pos + np.array([sx * sizes[0], sy * sizes[1]])
             keep = ((shifted[:, 0] > -band) & (shifted[:, 0] < sizes[0] + band)
                     & (shifted[:, 1] > -band) & (shifted[:, 1] < sizes[1] + band))
-            pts.append(shifted[keep])
-            idx.append(np.flatnonzero(keep))
+            images.append(shifted[keep])
+            image_of.append(np.flatnonzero(keep))
     from scipy import spatial
 
-    pts = np.concatenate(pts)
-    idx = np.concatenate(idx)
+    pts = np.concatenate(images)
+    idx = np.concatenate(image_of)
     tri = spatial.Delaunay(pts)
     s = tri.simplices
     edges = np.concatenate([s[:, [0, 1]], s[:, [1, 2]], s[:, [2, 0]]])
@@ -494,7 +501,7 @@ def _voronoi_pairs(pos: np.ndarray, box: Box):
 
 
 # --------------------------------------------------------------------------- Voronoi cells
-def voronoi_cell_areas(source, box: Box | None = None) -> np.ndarray:
+def voronoi_cell_areas(source: Simulation | ArrayLike, box: Box | None = None) -> np.ndarray:
     """The area of each disk's Voronoi cell (the points nearer its centre than any
     other), in the box: cells wrap around periodic axes and end at the walls.
 
@@ -565,7 +572,7 @@ def voronoi_cell_areas(source, box: Box | None = None) -> np.ndarray:
     return areas
 
 
-def local_packing_fractions(source) -> np.ndarray:
+def local_packing_fractions(source: Simulation) -> np.ndarray:
     """Each disk's area over its Voronoi cell's (:func:`voronoi_cell_areas`): the
     packing fraction it sees around itself.  In a triangular crystal at contact every
     disk has ``pi / (2 sqrt 3) = 0.9069``; defects and gaps lower it where they are.

@@ -14,8 +14,11 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Iterable
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import _placement
 from ._sums import weighted_sum
@@ -28,7 +31,7 @@ from ._validate import (
     refusal,
 )
 from .contacts import _segment_distance
-from .geometry import Box, as_walls
+from .geometry import Box, Wall, as_walls
 from .simulation import Simulation
 
 __all__ = ["make_gas", "lattice_packing_limit", "random_packing", "random_gas",
@@ -50,20 +53,20 @@ def make_gas(
     packing_fraction: float,
     *,
     radius: float = 0.5,
-    radii=None,
-    masses=1.0,
+    radii: ArrayLike | None = None,
+    masses: ArrayLike = 1.0,
     aspect: float = 1.0,
-    periodic=True,
+    periodic: bool | tuple[bool, bool] = True,
     temperature: float = 1.0,
-    seed=None,
-    gravity=None,
-    restitution=1.0,
-    wall_restitution=1.0,
-    tc=None,
-    wall_temperatures=None,
-    thermostat=None,
-    walls=None,
-    **physics,
+    seed: int | np.random.Generator | None = None,
+    gravity: ArrayLike | None = None,
+    restitution: ArrayLike = 1.0,
+    wall_restitution: float = 1.0,
+    tc: float | None = None,
+    wall_temperatures: dict | None = None,
+    thermostat: tuple[float, float] | None = None,
+    walls: Wall | Iterable[Wall] | None = None,
+    **physics: Any,
 ) -> Simulation:
     """A hard-disk gas at a given packing fraction, ready to run.
 
@@ -207,7 +210,8 @@ def make_gas(
                       walls=segs, **physics)
 
 
-def lattice_packing_limit(n: int, *, radius=0.5, radii=None, aspect=1.0, periodic=True) -> float:
+def lattice_packing_limit(n: int, *, radius: float = 0.5, radii: ArrayLike | None = None,
+                          aspect: float = 1.0, periodic: bool | tuple[bool, bool] = True) -> float:
     """The largest packing fraction :func:`make_gas` reaches for these disks (bisection).
 
     Parameters
@@ -255,12 +259,12 @@ def random_packing(
     packing_fraction: float,
     *,
     radius: float = 0.5,
-    radii=None,
+    radii: ArrayLike | None = None,
     aspect: float = 1.0,
-    periodic=True,
-    seed=None,
+    periodic: bool | tuple[bool, bool] = True,
+    seed: int | np.random.Generator | None = None,
     max_attempts: int = 1_000_000,
-):
+) -> tuple[np.ndarray, np.ndarray, Box]:
     """Disks placed uniformly at random without overlap (random sequential addition).
 
     The box is sized as by :func:`make_gas` (``sum(pi r^2) / (width * height)`` equals
@@ -377,13 +381,13 @@ def random_gas(
     packing_fraction: float,
     *,
     radius: float = 0.5,
-    radii=None,
-    masses=1.0,
+    radii: ArrayLike | None = None,
+    masses: ArrayLike = 1.0,
     aspect: float = 1.0,
-    periodic=True,
+    periodic: bool | tuple[bool, bool] = True,
     temperature: float = 1.0,
-    seed=None,
-    walls=None,
+    seed: int | np.random.Generator | None = None,
+    walls: Wall | Iterable[Wall] | None = None,
 ) -> Simulation:
     """A hard-disk gas from a disordered start: :func:`random_packing` positions and
     Maxwell-Boltzmann velocities (as :func:`make_gas` draws them).
@@ -448,7 +452,8 @@ def random_gas(
     return Simulation(pos, vel, rad, mass, box=box, walls=segs)
 
 
-def clear_of_walls(positions: np.ndarray, radii: np.ndarray, walls, box: Box) -> np.ndarray:
+def clear_of_walls(positions: np.ndarray, radii: np.ndarray, walls: Iterable[Wall],
+                   box: Box) -> np.ndarray:
     """Which disks no wall segment crosses: the rule by which :func:`make_gas`,
     :func:`random_gas` and the command line leave disks out.
 
@@ -600,9 +605,9 @@ def _triangular_sites(n: int, box: Box, spacing_min: float):
         return None
     k = int(np.argmax(np.where(ok, dist, -1.0)))
     rows, cols, sx, sy = int(ny[k]), int(nx[k]), float(ax[k]), float(ay[k])
-    i, j = np.meshgrid(np.arange(cols), np.arange(rows), indexing="xy")
-    i = i.ravel().astype(float)
-    j = j.ravel()
+    grid_i, grid_j = np.meshgrid(np.arange(cols), np.arange(rows), indexing="xy")
+    i = grid_i.ravel().astype(float)
+    j = grid_j.ravel()
     shift = 0.5 * (j % 2) if rows > 1 else 0.0
     if px:
         x = ((i + shift + 0.25) * sx) % box.width

@@ -38,7 +38,9 @@ from __future__ import annotations
 
 import io
 import json
+import os
 import zipfile
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -63,7 +65,7 @@ VERSION = 2
 _HEADER = "header.json"
 
 
-def save(sim, path, *, metadata: dict | None = None) -> None:
+def save(sim: Simulation, path: str | os.PathLike[str], *, metadata: dict | None = None) -> None:
     """Write the complete state of ``sim`` to ``path`` (atomically: see the module).
 
     Parameters
@@ -107,7 +109,7 @@ def save(sim, path, *, metadata: dict | None = None) -> None:
             z.writestr(name + ".npy", buf.getvalue())
 
 
-def load(path):
+def load(path: str | os.PathLike[str]) -> Simulation:
     """Read a checkpoint written by :func:`save`: a Simulation that continues exactly.
 
     Parameters
@@ -139,7 +141,7 @@ def load(path):
     return sim
 
 
-def read_metadata(path) -> dict:
+def read_metadata(path: str | os.PathLike[str]) -> dict:
     """The ``metadata`` saved with a checkpoint (an empty dict if none was given).
 
     Only the file's header is read, so this is quick for any size of state.
@@ -308,7 +310,8 @@ class Checkpoint(Operation):
         stop).
     """
 
-    def __init__(self, path, trigger: Trigger, *, metadata=None) -> None:
+    def __init__(self, path: str | os.PathLike[str], trigger: Trigger, *,
+                 metadata: dict | Callable[[Simulation], dict] | None = None) -> None:
         super().__init__(trigger)
         if metadata is not None and not (callable(metadata) or isinstance(metadata, dict)):
             raise TypeError(f"metadata must be a dict or a callable, got {metadata!r}")

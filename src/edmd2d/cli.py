@@ -48,6 +48,7 @@ import sys
 import textwrap
 import time as _time
 import zipfile
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
@@ -93,7 +94,7 @@ def _say(text: str, stream=None) -> None:
         os.close(devnull)
 
 
-def main(argv=None) -> int:
+def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line.
 
     Parameters
@@ -636,9 +637,10 @@ def _values(span: tuple) -> str:
 
 
 def _box_text(width: float, height: float, periodic) -> str:
+    px, py = periodic
     kind = {(True, True): "periodic", (False, False): "walled",
             (True, False): "periodic in x, walled in y",
-            (False, True): "walled in x, periodic in y"}[tuple(bool(p) for p in periodic)]
+            (False, True): "walled in x, periodic in y"}[(bool(px), bool(py))]
     return f"{width:.6g} x {height:.6g}, {kind}"
 
 
@@ -695,7 +697,8 @@ def _gsd_info(path: Path) -> str:
     if info["times"] is not None:
         lines.append(("time", f"{info['times'][0]:.10g} .. {info['times'][1]:.10g}"))
     lines.append(("disks", f"{info['n']}"))
-    lines.append(("box", _box_text(*info["box"], info["periodic"])))
+    width, height = info["box"]
+    lines.append(("box", _box_text(width, height, info["periodic"])))
     lines.append(("species", "; ".join(
         f"{s['name']}: {s['count']} (diameter {_values(s['diameters'])}, mass "
         f"{_values(s['masses'])})" for s in info["species"])))

@@ -57,7 +57,7 @@ CLOSE_PACKING = ETA_CLOSE_PACKED
 DEFAULT_MAX_PRESSURE = 1e9
 
 
-def packing_fraction(sim) -> float:
+def packing_fraction(sim: Simulation) -> float:
     """The fraction of the container's area the disks cover now:
     ``sum(pi r^2) / A``, with ``A`` from :func:`edmd2d.measurements.container_area`.
 
@@ -134,9 +134,10 @@ class Compression:
                 f"collisions={int(self.collisions[-1]) if len(self.collisions) else 0})")
 
 
-def compress(system, target: float | None = None, *, rate: float = 1e-3,
+def compress(system: Simulation, target: float | None = None, *, rate: float = 1e-3,
              max_pressure: float = DEFAULT_MAX_PRESSURE, temperature: float | None = None,
-             rescale_every: float = 2.0, progress=False) -> Compression:
+             rescale_every: float = 2.0,
+             progress: _progress.ProgressArg = False) -> Compression:
     """Compress a hard-disk system by growing its disks, to a packing fraction or until
     it jams.
 
@@ -254,12 +255,12 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
     try:
         while True:
             t_a = sim.time
-            w_a = sim._accumulators()["virial"]
+            w_a = sim._state.accumulators()["virial"]
             c_a = sim.counts.collisions
             sim.advance(until=t_end, collisions=step)
             kt_b = kinetic_temperature(sim)
             # Z = 1 + W / (2 N int kT dt), kT taken as linear over the interval.
-            virial = sim._accumulators()["virial"] - w_a
+            virial = sim._state.accumulators()["virial"] - w_a
             kt_time = 0.5 * (kt + kt_b) * (sim.time - t_a)
             if sim.counts.collisions - c_a < step // 2 and record["z"]:
                 # The interval the target cut short joins the one before it, so that
@@ -291,7 +292,11 @@ def compress(system, target: float | None = None, *, rate: float = 1e-3,
         if owned:
             bar.close()
     sim.set_growth(None)
-    final = packing_fraction(sim) if reached == "jammed" else target
+    if reached == "jammed":
+        final = packing_fraction(sim)
+    else:
+        assert target is not None  # (a target is reached only where one was given)
+        final = target
     if reached == "jammed" and target is not None:
         warnings.warn(f"the disks jammed at packing fraction {final:.6f} (Z = "
                       f"{record['z'][-1]:.3g}) before the target {target}: returning the "

@@ -44,15 +44,17 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._sums import dot
 from ._validate import as_float_array, as_positive_float, indices_where, per_disk
 from .analysis import _boxsize, _min_image, _wrap
 from .compress import DEFAULT_MAX_PRESSURE
-from .geometry import BOX_WALLS, Box, as_walls
+from .geometry import BOX_WALLS, Box, Wall, as_walls
 from .simulation import Simulation
 
 __all__ = ["ContactNetwork", "contact_network", "contact_tolerance", "BOX_SIDES",
@@ -187,7 +189,8 @@ class ContactNetwork:
 
 
 # --------------------------------------------------------------------------- public
-def contact_network(source, box: Box | None = None, *, radii=None, walls=None,
+def contact_network(source: Simulation | ArrayLike, box: Box | None = None, *,
+                    radii: ArrayLike | None = None, walls: Wall | Iterable[Wall] | None = None,
                     tol: float | str = DEFAULT_TOL) -> ContactNetwork:
     """The contact network of a packing, its rattlers and its isostatic count.
 
@@ -287,7 +290,8 @@ def contact_network(source, box: Box | None = None, *, radii=None, walls=None,
     return net
 
 
-def contact_tolerance(source, box: Box | None = None, *, radii=None, walls=None,
+def contact_tolerance(source: Simulation | ArrayLike, box: Box | None = None, *,
+                      radii: ArrayLike | None = None, walls: Wall | Iterable[Wall] | None = None,
                       min_separation: float = 100.0) -> float:
     """A contact tolerance read off the gaps of a packing, where they separate.
 
@@ -373,7 +377,7 @@ def _inputs(source, box, radii, walls):
         rad = per_disk("radii", radii, len(pos))
         if (rad <= 0).any():
             raise ValueError(f"radii must be > 0; disks {indices_where(rad <= 0)} are not")
-        segs = as_walls(walls)
+        segs = tuple(as_walls(walls))
     pos = _wrap(np.ascontiguousarray(pos, dtype=np.float64), box)
     ends = np.array([[w.start, w.end] for w in segs], dtype=np.float64).reshape(-1, 2, 2)
     return pos, np.asarray(rad, dtype=np.float64), box, ends

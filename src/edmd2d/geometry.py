@@ -6,9 +6,11 @@ from __future__ import annotations
 import functools
 import math
 import warnings
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._sums import dot
 from ._validate import as_float_array, as_positive_float, refusal
@@ -54,7 +56,8 @@ class Box:
     height: float
     periodic: tuple[bool, bool]
 
-    def __init__(self, width: float, height: float, periodic=True) -> None:
+    def __init__(self, width: float, height: float,
+                 periodic: bool | tuple[bool, bool] = True) -> None:
         width = as_positive_float("Box width", width)
         height = as_positive_float("Box height", height)
         for name, length in (("width", width), ("height", height)):
@@ -117,7 +120,7 @@ class Wall:
     start: tuple[float, float]
     end: tuple[float, float]
 
-    def __init__(self, start, end) -> None:
+    def __init__(self, start: ArrayLike, end: ArrayLike) -> None:
         a = as_float_array("Wall start", start, (2,))
         b = as_float_array("Wall end", end, (2,))
         if np.hypot(*(b - a)) == 0.0:
@@ -132,7 +135,7 @@ class Wall:
         return float(np.hypot(self.end[0] - self.start[0], self.end[1] - self.start[1]))
 
     @classmethod
-    def polygon(cls, vertices, closed: bool = True) -> list[Wall]:
+    def polygon(cls, vertices: ArrayLike, closed: bool = True) -> list[Wall]:
         """Walls along a polyline through ``vertices`` (closed by default).
 
         A closed polygon needs at least 3 vertices, an open polyline at least 2.
@@ -176,7 +179,7 @@ class Wall:
         return [cls(a, b) for a, b in pairs]
 
 
-def as_walls(walls) -> list[Wall]:
+def as_walls(walls: Wall | Iterable[Wall] | None) -> list[Wall]:
     """A ``walls`` argument as a list: ``None`` (none), one :class:`Wall` or a sequence
     of them; ``TypeError`` about ``walls`` naming what else was given."""
     if walls is None:
@@ -204,7 +207,7 @@ def as_walls(walls) -> list[Wall]:
 _COINCIDE = 1e-9
 
 
-def container(box: Box, walls, centres: np.ndarray) -> tuple[float, str]:
+def container(box: Box, walls: Sequence[Wall], centres: np.ndarray) -> tuple[float, str]:
     """The area of the container that holds the points ``centres`` in ``box``, among
     the wall segments ``walls``, and where it comes from.
 
@@ -302,7 +305,8 @@ def _closed_loops(walls: tuple, tol: float) -> tuple[np.ndarray, ...]:
         at.setdefault(v, []).append(e)
     # Walk from each unvisited edge; a walk through vertices of two edges each that
     # comes back to its start is a loop.
-    loops, loop_edges = [], []
+    loops: list[np.ndarray] = []
+    loop_edges: list[tuple[int, int]] = []
     seen = [False] * len(edges)
     for e0 in range(len(edges)):
         if seen[e0]:

@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import progress as _progress
 from ._facade import require_simulation
@@ -20,6 +22,9 @@ from ._operations import Blocks, Operation, Trigger, run
 from ._sums import dot, weighted_sum
 from ._validate import as_count, as_positive_float
 from .geometry import Box, Wall, container
+
+if TYPE_CHECKING:  # (for the annotations only: simulation imports this module)
+    from .simulation import Simulation
 
 __all__ = ["Measurement", "measure", "Measure", "kinetic_temperature",
            "degrees_of_freedom", "container_area", "Cooling", "cooling"]
@@ -219,7 +224,7 @@ class Measurement:
 _SUMMARY_SIDES = 8
 
 
-def degrees_of_freedom(sim) -> tuple[int, tuple[bool, bool]]:
+def degrees_of_freedom(sim: Simulation) -> tuple[int, tuple[bool, bool]]:
     """Kinetic degrees of freedom of the movable disks and the conserved momentum axes.
 
     A Cartesian component of the total momentum is conserved when its axis is periodic
@@ -252,12 +257,11 @@ def degrees_of_freedom(sim) -> tuple[int, tuple[bool, bool]]:
     movable = np.isfinite(sim.masses)
     # (A thermostat's redraws change the momentum too; gravity pushes along its axes.)
     free = bool(movable.all()) and not sim.walls and sim.thermostat is None
-    conserved = tuple(bool(sim.box.periodic[a] and free and sim.gravity[a] == 0.0)
-                      for a in range(2))
-    return 2 * int(movable.sum()) - int(sum(conserved)), conserved
+    x, y = (bool(sim.box.periodic[a] and free and sim.gravity[a] == 0.0) for a in range(2))
+    return 2 * int(movable.sum()) - int(x) - int(y), (x, y)
 
 
-def kinetic_temperature(sim) -> float:
+def kinetic_temperature(sim: Simulation) -> float:
     """The kinetic temperature ``kT`` of the movable disks now (2D, ``k_B = 1``).
 
     ``kT = (sum m v^2 - sum_c P_c^2 / M) / f``: each disk has two translational degrees
@@ -298,8 +302,8 @@ def kinetic_temperature(sim) -> float:
     return (twice_ke - cm) / dof
 
 
-def measure(sim, duration: float, *, blocks: int = 10,
-            area: float | None = None, progress=False) -> Measurement:
+def measure(sim: Simulation, duration: float, *, blocks: int = 10,
+            area: float | None = None, progress: _progress.ProgressArg = False) -> Measurement:
     """Run ``sim`` for ``duration`` and measure pressure, temperature and collision rates.
 
     The window is cut into ``blocks`` equal sub-windows; the values returned are the
@@ -482,9 +486,9 @@ class Measure(Operation):
         self._area = None if area is None else as_positive_float("area", area)
         self._edges: list[dict] = []
         self._meta: dict | None = None  # (n, n_all, dof, area, area_source) at the start
-        self._movable = None
-        self._box = None
-        self._walls = None
+        self._movable: np.ndarray | None = None
+        self._box: Box | None = None
+        self._walls: tuple[Wall, ...] | None = None
 
     @property
     def blocks(self) -> int:
@@ -496,7 +500,7 @@ class Measure(Operation):
         """The block boundaries so far (the first is the window's start), shape (B + 1,)."""
         return np.array([e["time"] for e in self._edges])
 
-    def begin(self, sim) -> None:
+    def begin(self, sim: Simulation) -> None:
         """Open the window at the run's start (or wait for the start of the window of
         a :class:`~edmd2d.operations.Blocks` trigger), or check that a window already
         open goes on with the same simulation.
@@ -515,6 +519,7 @@ class Measure(Operation):
         self._box, self._walls = sim.box, sim.walls
         self._movable = np.isfinite(sim.masses)
         if self._edges:
+            assert self._meta is not None  # (set with the first edge)
             if sim.time < self._edges[-1]["time"] or len(sim) != self._meta["n_all"]:
                 raise ValueError(
                     f"this Measure's window has a boundary at t={self._edges[-1]['time']} "
@@ -523,6 +528,7 @@ class Measure(Operation):
             return
         if isinstance(self.trigger, Blocks):
             t0 = self.trigger.window_start
+            assert t0 is not None  # (the run started the trigger before this)
             if t0 < sim.time:
                 raise ValueError(
                     f"the window of this Measure starts at t={t0}, before the run's start "
@@ -537,6 +543,7 @@ class Measure(Operation):
             area, source = _container(sim)
         else:
             area, source = self._area, "given"
+        assert self._movable is not None  # (set by begin, which a run calls first)
         n = int(self._movable.sum())
         box = sim.box
         self._meta = {"n": n, "n_all": len(sim), "area": area, "area_source": source,
@@ -550,9 +557,10 @@ class Measure(Operation):
         if not self._edges:
             self._open(sim)
         else:
+            assert self._movable is not None  # (set by begin, which a run calls first)
             self._edges.append(_edge(sim, self._movable))
 
-    def result(self):
+    def result(self) -> Measurement:
         """The measurement over the blocks ended so far.
 
         Returns
@@ -575,6 +583,7 @@ class Measure(Operation):
             tau = np.diff(times)
             duration = float(times[-1] - times[0])
         meta = self._meta
+        assert meta is not None  # (set with the first edge)
         return _from_edges(
             self._edges, tau, duration, n=meta["n"], n_all=meta["n_all"], dof=meta["dof"],
             area=meta["area"], area_source=meta["area_source"], box=self._box,
@@ -794,7 +803,7 @@ def _frozen(values: np.ndarray) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- containers
-def container_area(sim) -> float:
+def container_area(sim: Simulation) -> float:
     """The area of the container that holds the movable disks of ``sim``: the box's,
     or that of the regions bounded by closed polygons of its wall segments that hold
     a movable disk's centre (the rules are those of :func:`edmd2d.geometry.container`).
@@ -855,7 +864,7 @@ class Cooling:
     dissipated_energy: np.ndarray
 
 
-def cooling(sim, times) -> Cooling:
+def cooling(sim: Simulation, times: ArrayLike) -> Cooling:
     """Run ``sim`` through the increasing ``times`` and sample how it cools.
 
     Parameters
@@ -893,7 +902,7 @@ def cooling(sim, times) -> Cooling:
     for tk in t:
         sim.advance(until=float(tk))
         c, lost = sim.counts.collisions, sim.dissipated_energy()
-        if c0 is None:
+        if c0 is None or e0 is None:  # (the first sample: both are set together)
             c0, e0 = c, lost
         rows.append((2.0 * (c - c0) / n_all, sim.kinetic_energy(), kinetic_temperature(sim),
                      lost - e0))

@@ -50,6 +50,7 @@ import copy
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._engine import layout as _layout
 from ._engine import response as _response
@@ -133,7 +134,8 @@ class Model:
     BUFFER = 1 << 14
 
     def __init__(self, table: np.ndarray, wall: float, tc: float, species: np.ndarray,
-                 wall_temperatures, thermostat=None, rng=None, time=0.0):
+                 wall_temperatures: ArrayLike, thermostat: tuple[float, float] | None = None,
+                 rng: np.random.Generator | None = None, time: float = 0.0) -> None:
         self.table = np.ascontiguousarray(table, np.float64)
         self.wall = float(wall)
         self.tc = float(tc)

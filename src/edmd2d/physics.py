@@ -35,9 +35,10 @@ from __future__ import annotations
 import dataclasses
 import difflib
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import models as _models
 from ._validate import about, as_float_array
@@ -123,7 +124,7 @@ class Family:
     built_in: ClassVar[bool] = False
 
     @classmethod
-    def check(cls, system: System | None = None, **values):
+    def check(cls, system: System | None = None, **values: Any) -> Family | None:
         """The family built from its keywords' values (and what a family needs to know
         of the system, where it needs it), or ``None`` where they leave hard disks as
         they are.
@@ -154,6 +155,8 @@ class Family:
         -------
         dict
         """
+        if not dataclasses.is_dataclass(self):
+            raise TypeError(f"{type(self).__name__} is not a dataclass: it must define state()")
         return {f.name: getattr(self, f.name) for f in dataclasses.fields(self)}
 
     @classmethod
@@ -234,8 +237,9 @@ class Restitution(Family):
     species: np.ndarray
 
     @classmethod
-    def check(cls, system: System | None = None, *, restitution=1.0, wall_restitution=1.0,
-              tc=None) -> Restitution:
+    def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
+            cls, system: System | None = None, *, restitution: ArrayLike = 1.0,
+            wall_restitution: float = 1.0, tc: float | None = None) -> Restitution:
         """Check the coefficients for the species of the ``system``'s disks and take
         the default ``tc`` from their radii, velocities and masses.
 
@@ -252,6 +256,7 @@ class Restitution(Family):
         Restitution
             Elastic (all coefficients 1) included: :attr:`elastic` tells.
         """
+        assert system is not None  # (checked with the system, which it needs)
         species = system.species
         scalar = np.ndim(restitution) == 0
         with about("restitution"):
@@ -338,7 +343,9 @@ class Gravity(Family):
     g: np.ndarray
 
     @classmethod
-    def check(cls, system: System | None = None, *, gravity=None) -> Gravity | None:
+    def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
+            cls, system: System | None = None, *,
+            gravity: ArrayLike | None = None) -> Gravity | None:
         """``None`` (or zero: the straight-line engine, the same flights, faster) or a
         finite 2-vector.
 
@@ -385,7 +392,9 @@ class HeatedWalls(Family):
     kt: np.ndarray
 
     @classmethod
-    def check(cls, system: System | None = None, *, wall_temperatures=None) -> HeatedWalls:
+    def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
+            cls, system: System | None = None, *,
+            wall_temperatures: dict | None = None) -> HeatedWalls:
         """Check ``{wall: kT}`` for the ``system``'s box and wall segments.
 
         Parameters
@@ -399,6 +408,7 @@ class HeatedWalls(Family):
         HeatedWalls
             With no wall heated when ``wall_temperatures`` is ``None``.
         """
+        assert system is not None  # (checked with the system, which it needs)
         with about("wall_temperatures"):
             return cls(_wall_temperatures(wall_temperatures, system.box, system.n_segments))
 
@@ -467,7 +477,9 @@ class Thermostat(Family):
     rate: float
 
     @classmethod
-    def check(cls, system: System | None = None, *, thermostat=None) -> Thermostat | None:
+    def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
+            cls, system: System | None = None, *,
+            thermostat: tuple[float, float] | None = None) -> Thermostat | None:
         """``None`` (also for a zero rate) or ``(kT > 0, rate >= 0)``.
 
         Parameters
@@ -512,7 +524,9 @@ class Growth(Family):
     rate: float
 
     @classmethod
-    def check(cls, system: System | None = None, *, growth=None) -> Growth | None:
+    def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
+            cls, system: System | None = None, *,
+            growth: float | None = None) -> Growth | None:
         """``None`` (fixed radii, also for 0) or a rate > 0.
 
         Parameters
@@ -533,7 +547,8 @@ class Growth(Family):
                 raise ValueError(f"growth must be >= 0 (a rate per unit time), got {value}")
         return cls(value) if value > 0.0 else None
 
-    def check_combination(self, model, gravity) -> None:
+    def check_combination(self, model: _models.Model | None,
+                          gravity: np.ndarray | None) -> None:
         """Refuse growth with a ``model`` (restitution below 1, heated walls, a
         thermostat) or with ``gravity``: it is for elastic disks in straight flight.
 

@@ -8,10 +8,17 @@ behaviour).  A call may also be handed an existing ``tqdm`` bar, which it advanc
 
 from __future__ import annotations
 
+from typing import Any, TypeAlias
+
 __all__ = ["bar"]
 
+# What a ``progress`` argument takes: True, False, None or a tqdm bar (tqdm has no type
+# information: a bar is any object with ``update``).
+ProgressArg: TypeAlias = "bool | None | Any"
 
-def bar(progress, *, total, unit: str, desc: str, unit_scale: bool = True):
+
+def bar(progress: ProgressArg, *, total: float | None, unit: str, desc: str,
+        unit_scale: bool = True) -> tuple[Any, bool]:
     """The bar a call with ``progress`` should update.
 
     Parameters

@@ -5,15 +5,18 @@ from __future__ import annotations
 
 import copy
 import math
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from . import _checks, _operations, _state
 from . import measurements as _measurements
 from . import models as _models
 from . import physics as _physics
+from . import progress as _progress
 from ._engine import layout as _layout
 from ._facade import SimulationBase
 from ._sums import dot, weighted_sum
@@ -179,25 +182,25 @@ class Simulation(SimulationBase):
 
     def __init__(
         self,
-        positions,
-        velocities,
-        radii,
-        masses=1.0,
+        positions: ArrayLike,
+        velocities: ArrayLike,
+        radii: ArrayLike,
+        masses: ArrayLike = 1.0,
         box: Box | None = None,
         walls: Iterable[Wall] = (),
         *,
         time: float = 0.0,
         cell_size: float | None = None,
-        species=None,
-        restitution=1.0,
-        wall_restitution=1.0,
+        species: ArrayLike | None = None,
+        restitution: ArrayLike = 1.0,
+        wall_restitution: float = 1.0,
         tc: float | None = None,
-        gravity=None,
-        wall_temperatures=None,
-        thermostat=None,
-        seed=None,
-        growth=None,
-        **physics,
+        gravity: ArrayLike | None = None,
+        wall_temperatures: dict | None = None,
+        thermostat: tuple[float, float] | None = None,
+        seed: int | np.random.Generator | None = None,
+        growth: float | None = None,
+        **physics: Any,
     ) -> None:
         if box is None:
             raise TypeError("box is required: pass box=edmd2d.Box(width, height, periodic=...)")
@@ -225,9 +228,9 @@ class Simulation(SimulationBase):
         with about("species"):
             spec = _models.as_species(species, n)
         system = _physics.System(box, len(wall_list), rad, vel, mass, spec, float(t0))
-        g = _physics.Gravity.check(system, gravity=gravity)
-        g = None if g is None else g.g
-        growth = _physics.Growth.check(system, growth=growth)
+        gravity_family = _physics.Gravity.check(system, gravity=gravity)
+        g = None if gravity_family is None else gravity_family.g
+        growth_family = _physics.Growth.check(system, growth=growth)
         with about("positions"):
             pos = _checks.check_in_box(box, pos, rad)
         with about("walls"):
@@ -241,13 +244,13 @@ class Simulation(SimulationBase):
                                        wall_restitution=wall_restitution, tc=tc),
             _physics.HeatedWalls.check(system, wall_temperatures=wall_temperatures),
             _physics.Thermostat.check(system, thermostat=thermostat))
-        if growth is not None:
-            growth.check_combination(model, g)
+        if growth_family is not None:
+            growth_family.check_combination(model, g)
         families = _physics.check_registered(system, physics)
         self._state = _state.EngineState(
             box, wall_list, pos, vel, rad, mass, float(t0),
             species=None if species is None else spec, model=model, gravity=g,
-            growth=growth, cell_size=cell_size, families=families)
+            growth=growth_family, cell_size=cell_size, families=families)
 
     def __len__(self) -> int:
         """The number of disks."""
@@ -522,7 +525,7 @@ class Simulation(SimulationBase):
         """
         return self.kinetic_energy() + self.potential_energy()
 
-    def set_positions(self, positions) -> None:
+    def set_positions(self, positions: ArrayLike) -> None:
         """Move every disk to new positions at the current time (``sim.positions = ...``
         does the same).
 
@@ -558,7 +561,7 @@ class Simulation(SimulationBase):
                                          self.velocities, self.radii, self.masses,
                                          state.model))
 
-    def set_velocities(self, velocities) -> None:
+    def set_velocities(self, velocities: ArrayLike) -> None:
         """Replace all velocities at the current time (e.g. to rescale the temperature).
 
         Parameters
@@ -593,7 +596,7 @@ class Simulation(SimulationBase):
                                                   self.positions, vel, self.radii,
                                                   self.masses, state.model, "velocities"))
 
-    def measure(self, duration: float, **kwargs):
+    def measure(self, duration: float, **kwargs: Any) -> _measurements.Measurement:
         """Run for ``duration`` and return the measurements over that window.
 
         Parameters
@@ -610,7 +613,8 @@ class Simulation(SimulationBase):
         """
         return _measurements.measure(self, duration, **kwargs)
 
-    def stream_events(self, callback, capacity: int = 1 << 16) -> None:
+    def stream_events(self, callback: Callable[[np.ndarray], object] | None,
+                      capacity: int = 1 << 16) -> None:
         """Deliver every processed event to ``callback``, in batches, without loss.
 
         Parameters
@@ -688,7 +692,7 @@ class Simulation(SimulationBase):
         self._state.set_growth(growth)
 
     def advance(self, until: float | None = None, collisions: int | None = None,
-                progress=False) -> Simulation:
+                progress: _progress.ProgressArg = False) -> Simulation:
         """Run the simulation forward, event by event, in time order.
 
         Parameters
@@ -751,7 +755,8 @@ class Simulation(SimulationBase):
         return self
 
     def run(self, until: float | None = None, collisions: int | None = None,
-            operations=(), progress=False) -> Simulation:
+            operations: Iterable[_operations.Operation] = (),
+            progress: _progress.ProgressArg = False) -> Simulation:
         """Advance like :meth:`advance`, firing ``operations`` on the way, each when
         its trigger says (see :mod:`edmd2d.operations`).
 

@@ -42,6 +42,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ._validate import as_positive_float
 
@@ -101,7 +102,7 @@ def _out(arr):
     return float(arr) if np.ndim(arr) == 0 else arr
 
 
-def henderson_z(eta):
+def henderson_z(eta: ArrayLike) -> float | np.ndarray:
     """Henderson's hard-disk equation of state, ``Z = (1 + eta^2/8) / (1 - eta)^2``.
 
     D. Henderson, Mol. Phys. 30, 971 (1975).  Expanded, ``1 + 2 eta + 3.125 eta^2 +
@@ -126,7 +127,7 @@ def henderson_z(eta):
     return _out((1.0 + e**2 / 8.0) / (1.0 - e) ** 2)
 
 
-def santos_z(eta):
+def santos_z(eta: ArrayLike) -> float | np.ndarray:
     """The Santos-Lopez de Haro-Yuste equation of state for hard disks.
 
     ``Z = 1 / (1 - 2 eta + (2 eta_max - 1) eta^2 / eta_max^2)``, ``eta_max = pi sqrt(3)/6``:
@@ -154,7 +155,7 @@ def santos_z(eta):
     return _out(1.0 / (1.0 - 2.0 * e + (2.0 * em - 1.0) * e**2 / em**2))
 
 
-def virial_z(eta, order: int = 10):
+def virial_z(eta: ArrayLike, order: int = 10) -> float | np.ndarray:
     """The virial series of hard disks up to ``B_order`` (2 <= order <= 10).
 
     ``Z = 1 + sum_{k=2}^{order} 2^(k-1) (B_k / B_2^(k-1)) eta^(k-1)`` with ``B_2 / a = 2``
@@ -197,7 +198,7 @@ def virial_z(eta, order: int = 10):
     return _out(z)
 
 
-def kolafa_rottner_z(eta):
+def kolafa_rottner_z(eta: ArrayLike) -> float | np.ndarray:
     """Kolafa and Rottner's equation of state of the hard-disk fluid: the reference
     for the dense fluid.
 
@@ -237,7 +238,7 @@ def kolafa_rottner_z(eta):
     return _out(sum(a * x**i for i, a in _KOLAFA_ROTTNER.items()))
 
 
-def contact_value(z, eta):
+def contact_value(z: ArrayLike, eta: ArrayLike) -> float | np.ndarray:
     """The pair distribution at contact from ``Z``: ``g(sigma) = (Z - 1) / (2 eta)``.
 
     This is the 2D virial theorem for hard disks, ``Z = 1 + (pi / 2) n sigma^2
@@ -266,7 +267,7 @@ def contact_value(z, eta):
     return _out((np.asarray(z, dtype=float) - 1.0) / (2.0 * e))
 
 
-def number_density(eta, diameter: float = 1.0):
+def number_density(eta: ArrayLike, diameter: float = 1.0) -> float | np.ndarray:
     """Number density of equal disks, ``n = 4 eta / (pi sigma^2)``.
 
     Parameters
@@ -290,8 +291,8 @@ def number_density(eta, diameter: float = 1.0):
     return _out(4.0 * np.asarray(eta, dtype=float) / (math.pi * d**2))
 
 
-def enskog_collision_rate(n, diameter, g_contact, temperature: float = 1.0,
-                          mass: float = 1.0):
+def enskog_collision_rate(n: ArrayLike, diameter: float, g_contact: ArrayLike,
+                          temperature: float = 1.0, mass: float = 1.0) -> float | np.ndarray:
     """Collisions per disk per unit time, ``omega = 2 n sigma g(sigma) sqrt(pi kT / m)``.
 
     Derivation (2D, equal disks): a partner hits the contact circle of radius ``sigma``
@@ -352,7 +353,8 @@ def mean_speed(temperature: float = 1.0, mass: float = 1.0) -> float:
     return math.sqrt(math.pi * kt / (2.0 * m))
 
 
-def maxwell_boltzmann_speed_pdf(v, temperature: float = 1.0, mass: float = 1.0):
+def maxwell_boltzmann_speed_pdf(v: ArrayLike, temperature: float = 1.0,
+                                mass: float = 1.0) -> float | np.ndarray:
     """The 2D Maxwell-Boltzmann speed density ``f(v) = (m v / kT) exp(-m v^2 / (2 kT))``.
 
     (In 3D the density grows as ``v^2``; in 2D the shell is a circle, hence ``v``.)
@@ -380,7 +382,8 @@ def maxwell_boltzmann_speed_pdf(v, temperature: float = 1.0, mass: float = 1.0):
     return _out(np.where(v >= 0, (m * v / kt) * np.exp(-m * v**2 / (2.0 * kt)), 0.0))
 
 
-def homogeneous_cooling(restitution, collisions_per_disk):
+def homogeneous_cooling(restitution: float,
+                        collisions_per_disk: ArrayLike) -> float | np.ndarray:
     """Granular temperature of a homogeneous cooling gas against collisions per disk,
     ``T / T0 = exp(-(1 - e^2) C / 2)`` (2D, smooth disks; derived in
     ``docs/restitution.md``).
@@ -406,7 +409,8 @@ def homogeneous_cooling(restitution, collisions_per_disk):
     return _out(np.exp(-(1.0 - e * e) * np.asarray(collisions_per_disk, dtype=float) / 2.0))
 
 
-def haff_temperature(restitution, time, collision_rate):
+def haff_temperature(restitution: float, time: ArrayLike,
+                     collision_rate: float) -> float | np.ndarray:
     """Haff's law for a homogeneous cooling gas, ``T / T0 = 1 / (1 + t / t_H)^2`` with
     ``t_H = 4 / ((1 - e^2) omega0)``.
 

@@ -25,12 +25,15 @@ _ARGUMENT_KEYS = {
 def _key_of_argument(exc: BaseException) -> tuple:
     """The configuration key of the argument a library error is about, or ``()``."""
     name = argument_of(exc)
+    if name is None:
+        return ()
     if name in physics.KEYWORDS and physics.KEYWORDS[name].kind:
         return ("model", name)
     return _ARGUMENT_KEYS.get(name, ())
 
 
-def build(cfg: RunConfig, seed: int):
+def build(cfg: RunConfig,
+          seed: int | np.random.SeedSequence | None) -> tuple[Simulation, int]:
     """The simulation a configuration describes, at time 0.
 
     Without wall segments or a mixture of masses this is

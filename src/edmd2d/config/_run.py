@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import re
 import sys
 from pathlib import Path
@@ -25,7 +26,7 @@ else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
 
-def load(path) -> RunConfig:
+def load(path: str | os.PathLike[str]) -> RunConfig:
     """Read and check the configuration file ``path``.
 
     Parameters

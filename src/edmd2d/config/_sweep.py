@@ -4,6 +4,7 @@ one parameter set of a sweep as a run configuration (:func:`task_config`)."""
 from __future__ import annotations
 
 import itertools
+import os
 
 from ._lines import _shown, _unknown
 from ._run import _parse, _read
@@ -24,7 +25,7 @@ from ._schema import (
 # walls (a sweep measures the equation of state of a gas), with two more keys.
 _SWEEP_RUN = {**_RUN, "equilibrate_collisions": (_number(0.0), OPTIONAL)}
 _SWEEP_OUTPUT = {"checkpoint_every": (_number(0.0, lo_open=True), OPTIONAL)}
-_SWEEP_TABLES = {"gas": _GAS, "run": _SWEEP_RUN, "output": _SWEEP_OUTPUT}
+_SWEEP_TABLES: dict[str, dict] = {"gas": _GAS, "run": _SWEEP_RUN, "output": _SWEEP_OUTPUT}
 _SWEEP = {"replicas": (_integer(1), 1), "seed": (_integer(0), OPTIONAL)}
 
 # The keys of a sweep's parameter set, each with the table it belongs to
@@ -35,7 +36,7 @@ SWEEP_KEYS: dict[str, str] = {
 }
 
 
-def load_sweep(path) -> RunConfig:
+def load_sweep(path: str | os.PathLike[str]) -> RunConfig:
     """Read and check the sweep configuration file ``path`` (``edmd2d sweep``).
 
     A sweep configuration has the ``[gas]`` and ``[run]`` tables of a run

@@ -62,7 +62,10 @@ from __future__ import annotations
 
 import itertools
 import json
+import os
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any, Literal
 
 import numpy as np
 
@@ -99,7 +102,7 @@ TASKS_DIR = _store.TASKS_DIR
 
 
 # ------------------------------------------------------------------ the grid
-def grid(parameters) -> list[dict]:
+def grid(parameters: list[dict] | dict[str, list]) -> list[dict]:
     """The parameter sets of a sweep: a list of dicts as given, or every combination
     of a dict of lists.
 
@@ -163,9 +166,13 @@ def grid(parameters) -> list[dict]:
 
 
 # ------------------------------------------------------------------ the sweep
-def sweep(function, parameters, *, output, replicas: int = 1, seed=None, scheduler=None,
-          workers: int | None = None, progress=False, retry_failed: bool = True,
-          warmup=None, metadata: dict | None = None) -> SweepResult:
+def sweep(function: Callable[[dict, np.random.SeedSequence, Path], dict],
+          parameters: list[dict] | dict[str, list], *, output: str | os.PathLike[str],
+          replicas: int = 1,
+          seed: int | Sequence[int] | None = None, scheduler: Any = None,
+          workers: int | None = None, progress: _progress.ProgressArg = False,
+          retry_failed: bool = True, warmup: Callable[[], object] | Literal[False] | None = None,
+          metadata: dict | None = None) -> SweepResult:
     """Run ``function(parameters, seed, workdir)`` for every parameter set and replica.
 
     Parameters

@@ -3,7 +3,10 @@
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
+
+import numpy as np
 
 from .. import checkpoint as _checkpoint
 from .. import config as _config
@@ -20,7 +23,8 @@ _EOS_FORMAT = "edmd2d-eos-task"
 _EOS_VERSION = 2
 
 
-def eos_task(parameters: dict, seed, workdir) -> dict:
+def eos_task(parameters: dict, seed: np.random.SeedSequence | int | None,
+             workdir: str | os.PathLike[str]) -> dict:
     """A task of :func:`sweep`: the equation of state of a gas, with checkpoints.
 
     The gas is built from ``parameters`` as ``edmd2d run`` builds the ``[gas]`` of a

@@ -9,6 +9,7 @@ import csv
 import io
 import json
 import math
+import os
 import platform
 import sys
 from dataclasses import dataclass
@@ -101,7 +102,7 @@ class SweepResult:
         raise KeyError(f"no finished task {task!r} in {self.output}")
 
 
-def load(output) -> SweepResult:
+def load(output: str | os.PathLike[str]) -> SweepResult:
     """Read the results of a sweep (finished or not) from its output directory.
 
     Parameters

@@ -20,6 +20,8 @@ Examples
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 from ..simulation import EVENT_DTYPE
@@ -48,7 +50,7 @@ class EventWriter:
         For another ``mode``.
     """
 
-    def __init__(self, path, mode: str = "w") -> None:
+    def __init__(self, path: str | os.PathLike[str], mode: str = "w") -> None:
         if mode not in ("w", "a"):
             raise ValueError(f"mode must be 'w' or 'a', got {mode!r}")
         self._file = open(path, mode, encoding="ascii")
@@ -73,7 +75,7 @@ class EventWriter:
         self.close()
 
 
-def read(path) -> np.ndarray:
+def read(path: str | os.PathLike[str]) -> np.ndarray:
     """The events of a file written by :class:`EventWriter`.
 
     Parameters

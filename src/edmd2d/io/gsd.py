@@ -43,8 +43,10 @@ from __future__ import annotations
 import math
 import os
 import string
+from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import measurements as _measurements
 from .. import physics as _physics
@@ -95,17 +97,18 @@ class Writer:
     3.0
     """
 
-    def __init__(self, path, mode: str = "w") -> None:
+    def __init__(self, path: str | os.PathLike[str], mode: str = "w") -> None:
         if mode not in ("w", "a"):
             raise ValueError(f"mode must be 'w' or 'a', got {mode!r}")
         new = mode == "w" or not os.path.exists(path)
         self._file = _gsd_hoomd().open(str(path), mode)
         if new:  # (the gsd library creates files with mode 0640 whatever the umask)
             os.chmod(path, umask_mode())
-        self._start = None  # (time, accumulators) at the first frame written
+        # (time, accumulators) at the first frame written
+        self._start: tuple[float, dict] | None = None
         self._temperatures: list[float] = []
 
-    def write(self, sim) -> None:
+    def write(self, sim: Simulation) -> None:
         """Append the state of ``sim`` at its current time as a frame.
 
         Parameters
@@ -199,7 +202,8 @@ def _frame(sim, writer: Writer):
     return frame
 
 
-def record(sim, path, times, mode: str = "w") -> None:
+def record(sim: Simulation, path: str | os.PathLike[str], times: ArrayLike,
+           mode: str = "w") -> None:
     """Advance ``sim`` to each of ``times`` (increasing, not before ``sim.time``) and
     write a frame there.
 
@@ -221,7 +225,8 @@ def record(sim, path, times, mode: str = "w") -> None:
             out.write(sim)
 
 
-def read(path, frame: int = -1, *, radius_scale: float = 1.0, **physics):
+def read(path: str | os.PathLike[str], frame: int = -1, *, radius_scale: float = 1.0,
+         **physics: Any) -> Simulation:
     """A :class:`~edmd2d.Simulation` from a frame of a GSD file.
 
     Parameters
@@ -267,7 +272,8 @@ def read(path, frame: int = -1, *, radius_scale: float = 1.0, **physics):
     if xy != 0.0:
         raise ValueError(f"frame {frame} of {path} has a tilted box (xy = {xy}); "
                          "edmd2d boxes are rectangles")
-    periodic = tuple(bool(v) for v in log.get("edmd2d/periodic", np.array([1, 1])))
+    px, py = log.get("edmd2d/periodic", np.array([1, 1]))
+    periodic = (bool(px), bool(py))
     box = Box(lx, ly, periodic=periodic)
     centre = np.array([lx / 2.0, ly / 2.0])
     n = int(f.particles.N)
@@ -333,7 +339,7 @@ class WriteGSD(Operation):
         Create the file (replacing one that exists) or append to it.
     """
 
-    def __init__(self, path, trigger: Trigger, mode: str = "w") -> None:
+    def __init__(self, path: str | os.PathLike[str], trigger: Trigger, mode: str = "w") -> None:
         super().__init__(trigger)
         self.writer = Writer(path, mode)
 
@@ -346,7 +352,7 @@ class WriteGSD(Operation):
         self.writer.close()
 
 
-def describe(path) -> dict:
+def describe(path: str | os.PathLike[str]) -> dict:
     """What a GSD file holds: its frames, the times they span, and the disks, box,
     species and walls of its last frame.
 
@@ -419,7 +425,7 @@ def describe(path) -> dict:
     }
 
 
-def copy_until(source, target, time: float) -> None:
+def copy_until(source: str | os.PathLike[str], target: str | os.PathLike[str], time: float) -> None:
     """Make ``target`` hold the frames of ``source`` up to the time ``time``, those a
     run continued from a checkpoint at ``time`` goes on from (later ones were written
     after the checkpoint).  ``target`` is replaced atomically; it may be ``source``.

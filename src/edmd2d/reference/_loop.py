@@ -9,6 +9,7 @@ into a periodic box.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
 
 import numpy as np
 
@@ -16,6 +17,10 @@ from ..geometry import Box, Wall
 from . import _search
 from ._rules import CollisionRules
 from ._times import INF, _at, _dot
+
+# Trusted input (see ReferenceSimulation): a value per disk, or a pair of them.
+Pairs = Sequence[Sequence[float]] | np.ndarray
+PerDisk = float | Sequence[float] | np.ndarray
 
 
 class ReferenceSimulation(CollisionRules):
@@ -173,11 +178,19 @@ class ReferenceSimulation(CollisionRules):
     (0.0, 12.0, 12.0)
     """
 
-    def __init__(self, positions, velocities, radii, masses=1.0, box: Box | None = None,
-                 walls=(), *, time=0.0, species=None, restitution=1.0,
-                 wall_restitution=1.0, tc=0.0, gravity=(0.0, 0.0),
-                 wall_temperatures=None, thermostat=None, seed=None, growth=None):
+    def __init__(self, positions: Pairs, velocities: Pairs, radii: PerDisk,
+                 masses: PerDisk = 1.0, box: Box | None = None,
+                 walls: Iterable[Wall | tuple] = (), *, time: float = 0.0,
+                 species: Sequence[int] | np.ndarray | None = None,
+                 restitution: float | Sequence[Sequence[float]] | np.ndarray = 1.0,
+                 wall_restitution: float = 1.0, tc: float = 0.0,
+                 gravity: tuple[float, float] = (0.0, 0.0),
+                 wall_temperatures: dict | None = None,
+                 thermostat: tuple[float, float] | None = None, seed: int | None = None,
+                 growth: float | None = None) -> None:
         n = len(positions)
+        # (Required: its default only lets it follow masses as a keyword.)
+        assert box is not None, "ReferenceSimulation needs a box"
         self.box = box
         self.walls = [w if isinstance(w, Wall) else Wall(*w) for w in walls]
         self.p = [[float(x), float(y)] for x, y in positions]
@@ -195,10 +208,9 @@ class ReferenceSimulation(CollisionRules):
         self.collisions = 0
         self.wall_collisions = 0
         self.species = [0] * n if species is None else [int(s) for s in species]
-        if np.ndim(restitution) == 0:
-            self.restitution = float(restitution)
-        else:
-            self.restitution = [[float(e) for e in row] for row in restitution]
+        table = np.asarray(restitution, dtype=float)
+        self.restitution: float | list[list[float]] = (
+            float(table) if table.ndim == 0 else table.tolist())
         self.wall_restitution = float(wall_restitution)
         self.tc = float(tc)
         self.t_last = [-INF] * n
@@ -213,7 +225,7 @@ class ReferenceSimulation(CollisionRules):
         # into once its next bounce would come within tc (and a disk that starts at
         # rest touching such a wall); a collision with a disk or a segment that gives it
         # a velocity along the wall's normal frees it.
-        self.resting = [set() for _ in range(n)]
+        self.resting: list[set[int]] = [set() for _ in range(n)]
         names = {"left": 0, "right": 1, "bottom": 2, "top": 3}
         self.wall_kt = {(names[k] if isinstance(k, str) else 4 + k): float(t)
                         for k, t in (wall_temperatures or {}).items()}
@@ -285,6 +297,7 @@ class ReferenceSimulation(CollisionRules):
         return r * math.cos(2.0 * math.pi * self._u())
 
     def _waiting_time(self):
+        assert self.thermostat is not None  # (called only with a thermostat)
         return -math.log(1.0 - self._u()) / (self.thermostat[1] * len(self.p))
 
     def _redraw(self):
@@ -294,6 +307,7 @@ class ReferenceSimulation(CollisionRules):
         self.next_redraw += self._waiting_time()
         if math.isinf(self.m[k]):
             return
+        assert self.thermostat is not None  # (called only with a thermostat)
         s = math.sqrt(self.thermostat[0] / self.m[k])
         before = _dot(self.v[k], self.v[k])
         vx = s * self._gauss()
@@ -304,7 +318,7 @@ class ReferenceSimulation(CollisionRules):
         self.redraws += 1
         self.events.append((self.time, "thermostat", k, -1))
 
-    def next_event(self):
+    def next_event(self) -> _search.Event:
         """The earliest event from now, found by examining every pair and every wall.
 
         Returns
@@ -352,7 +366,8 @@ class ReferenceSimulation(CollisionRules):
                         images[axis] += round((p[axis] - wrapped) / length)
                     p[axis] = wrapped
 
-    def advance(self, until=None, collisions=None):
+    def advance(self, until: float | None = None,
+                collisions: int | None = None) -> ReferenceSimulation:
         """Process events in time order up to a time or a number of collisions.
 
         Parameters
@@ -391,6 +406,7 @@ class ReferenceSimulation(CollisionRules):
                 continue
             if self.time + dt > target or dt == INF:
                 break
+            assert kind is not None  # (an event: dt < inf)
             self._drift(dt)
             self._resolve(kind, i, partner, detail)
             self._wrap()
@@ -402,16 +418,16 @@ class ReferenceSimulation(CollisionRules):
         return self
 
     @property
-    def positions(self):
+    def positions(self) -> np.ndarray:
         """The disk centres now, a new ``(N, 2)`` array."""
         return np.array(self.p)
 
     @property
-    def velocities(self):
+    def velocities(self) -> np.ndarray:
         """The disk velocities now, a new ``(N, 2)`` array."""
         return np.array(self.v)
 
-    def kinetic_energy(self):
+    def kinetic_energy(self) -> float:
         """The kinetic energy of the movable disks.
 
         Returns
@@ -421,7 +437,7 @@ class ReferenceSimulation(CollisionRules):
         """
         return sum(0.5 * m * _dot(v, v) for m, v in zip(self.m, self.v) if not math.isinf(m))
 
-    def momentum(self):
+    def momentum(self) -> np.ndarray:
         """The total momentum of the movable disks.
 
         Returns
@@ -432,7 +448,7 @@ class ReferenceSimulation(CollisionRules):
         return sum((m * np.array(v) for m, v in zip(self.m, self.v) if not math.isinf(m)),
                    np.zeros(2))
 
-    def potential_energy(self):
+    def potential_energy(self) -> float:
         """The potential energy in the uniform field ``gravity``.
 
         Returns
@@ -447,7 +463,7 @@ class ReferenceSimulation(CollisionRules):
         return -sum(m * (gx * (p[0] + k[0] * w) + gy * (p[1] + k[1] * h))
                     for m, p, k in zip(self.m, self.p, self.images) if not math.isinf(m))
 
-    def total_energy(self):
+    def total_energy(self) -> float:
         """Kinetic plus potential energy.
 
         Returns
@@ -459,8 +475,6 @@ class ReferenceSimulation(CollisionRules):
         return self.kinetic_energy() + self.potential_energy()
 
 
-def _per_disk(value, n):
-    try:
-        return [float(value)] * n
-    except TypeError:
-        return [float(x) for x in value]
+def _per_disk(value: PerDisk, n: int) -> list[float]:
+    values = np.asarray(value, dtype=float)
+    return [float(values)] * n if values.ndim == 0 else values.tolist()

@@ -10,6 +10,7 @@ box wall that gravity presses it into, and contacts of growing disks.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 from ._times import _dot
 
@@ -24,6 +25,29 @@ class CollisionRules:
     ``collisions`` and ``wall_collisions``, and the random draws ``_u`` and ``_gauss``
     (one stream for the whole run, shared with the thermostat).
     """
+
+    # The state described above, set up by ReferenceSimulation.
+    p: list[list[float]]
+    v: list[list[float]]
+    r: list[float]
+    m: list[float]
+    dr: list[float]
+    t_last: list[float]
+    resting: list[set[int]]
+    species: list[int]
+    tc: float
+    growth: float | None
+    restitution: float | list[list[float]]
+    wall_restitution: float
+    gravity: tuple[float, float]
+    wall_kt: dict[int, float]
+    time: float
+    dissipated: float
+    wall_heat: list[float]
+    collisions: int
+    wall_collisions: int
+    _u: Callable[[], float]
+    _gauss: Callable[[], float]
 
     def _recent(self, k):
         """The TC rule for disk ``k``: movable and collided less than ``tc`` ago."""

@@ -9,6 +9,7 @@ a lower bound on their contact time and stops once no later one can come first).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from ._times import (
     INF,
@@ -20,6 +21,10 @@ from ._times import (
     segment_contact_time,
     segment_contact_time_accelerated,
 )
+
+# An event found: its time, its kind ("disk", "wall", "box"; None if there is none), the
+# disk, its partner and the kind's detail of the contact.
+Event = tuple[float, str | None, int, int, Any]
 
 
 def _segment_distance(p, a, b):
@@ -48,7 +53,7 @@ def next_event(positions, velocities, radii, growth_speeds, walls, box, shifts):
     ``growth_speeds`` are the speeds at which the radii grow, or ``None`` without
     growth; ``shifts`` the periodic image shifts to try for each pair and wall.
     """
-    best = (INF, None, -1, -1, None)
+    best: Event = (INF, None, -1, -1, None)
     n = len(positions)
     for i in range(n):
         for j in range(i + 1, n):
@@ -116,7 +121,8 @@ def next_event_accelerated(positions, velocities, radii, acc, walls, box, shifts
     wins, as there.
     """
     n = len(positions)
-    candidates = []  # (lower bound on the time, loop order, kind, i, partner, detail)
+    # (lower bound on the time, loop order, kind, i, partner, detail)
+    candidates: list[tuple[float, int, str, int, int, Any]] = []
     for i in range(n):
         p, v, r = positions[i], velocities[i], radii[i]
         for j in range(i + 1, n):
@@ -140,10 +146,12 @@ def next_event_accelerated(positions, velocities, radii, acc, walls, box, shifts
                 gap = min(p[axis], length - p[axis]) - r
                 candidates.append((_earliest(gap, abs(v[axis]), abs(acc[i][axis]), r),
                                    len(candidates), "box", i, axis, length))
-    best, best_key = (INF, None, -1, -1, None), (INF, -1)
+    best: Event = (INF, None, -1, -1, None)
+    best_key = (INF, -1)
     for bound, order, kind, i, partner, data in sorted(candidates, key=lambda c: c[:2]):
         if bound > best[0]:
             break
+        event: Event
         p, v, r = positions[i], velocities[i], radii[i]
         if kind == "disk":
             sx, sy, dp, dv, da = data

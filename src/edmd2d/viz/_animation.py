@@ -5,17 +5,22 @@ through edmd2d's writers."""
 
 from __future__ import annotations
 
+import os
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any
 
 import matplotlib as mpl
 import matplotlib.animation as manim
 import numpy as np
 from matplotlib.axes import Axes
+from numpy.typing import ArrayLike
 
 from .._validate import as_count, as_positive_float
 from ..operations import RecordFrames, Snapshot
 from ..simulation import Simulation
-from ._colors import ColorBy
+from ._colors import Color, ColorBy
+from ._layout import _figure_of
 from ._scene import _Scene
 from ._writers import _SAVEFIG_GRABBERS, _ffmpeg_executable, _save_animation
 
@@ -27,13 +32,13 @@ def animate(
     *,
     color_by: ColorBy = "speed",
     trail: int = 0,
-    trail_disks=None,
-    trail_color="k",
+    trail_disks: ArrayLike | None = None,
+    trail_color: Color = "k",
     show_time: bool = True,
     time_per_second: float = 1.0,
     ax: Axes | None = None,
     blit: bool = True,
-    **style,
+    **style: Any,
 ) -> SimulationAnimation:
     """An animation that runs ``sim`` forward for ``duration`` and shows every frame.
 
@@ -121,17 +126,17 @@ def animate(
 
 
 def animate_frames(
-    frames,
+    frames: RecordFrames | Sequence[Snapshot],
     fps: float = 30,
     *,
     color_by: ColorBy = "speed",
     trail: int = 0,
-    trail_disks=None,
-    trail_color="k",
+    trail_disks: ArrayLike | None = None,
+    trail_color: Color = "k",
     show_time: bool = True,
     ax: Axes | None = None,
     blit: bool = True,
-    **style,
+    **style: Any,
 ) -> FramesAnimation:
     """An animation of frames recorded during a run (:class:`~edmd2d.operations.RecordFrames`).
 
@@ -229,7 +234,7 @@ class SimulationAnimation(manim.FuncAnimation):
         self._played = False  # a frame has been drawn: the simulation may have moved on
         self._writer_draws = False  # saving with a writer whose grab_frame draws the figure
         super().__init__(
-            scene.ax.figure, self.goto_frame, frames=len(frame_times),
+            _figure_of(scene.ax), self.goto_frame, frames=len(frame_times),
             init_func=scene.update, interval=1000.0 / fps, repeat=False, blit=blit,
             cache_frame_data=False,
         )
@@ -257,12 +262,20 @@ class SimulationAnimation(manim.FuncAnimation):
         """
         self._check_can_start(k)
         self._played = True
+        # (A simulation: FramesAnimation, whose frames are snapshots, has its own.)
+        assert isinstance(self.sim, Simulation)
         self.sim.advance(until=float(self.frame_times[k]))
         return self._scene.update()
 
-    def save(self, filename, writer=None, fps=None, dpi=None, codec=None, bitrate=None,
-             extra_args=None, metadata=None, extra_anim=None, savefig_kwargs=None, *,
-             progress_callback=None, colors=None) -> None:
+    def save(self, filename: str | os.PathLike[str],
+             writer: manim.AbstractMovieWriter | str | None = None,
+             fps: float | None = None, dpi: float | None = None, codec: str | None = None,
+             bitrate: int | None = None, extra_args: list[str] | None = None,
+             metadata: dict[str, str] | None = None,
+             extra_anim: list[manim.Animation] | None = None,
+             savefig_kwargs: dict[str, Any] | None = None, *,
+             progress_callback: Callable[[int, int], Any] | None = None,
+             colors: int | None = None) -> None:
         """Write the animation to a file: :func:`save` with matplotlib's signature.
 
         ``anim.save("run.mp4")`` is ``viz.save(anim, "run.mp4", progress=False)``: GIFs
@@ -308,7 +321,7 @@ class SimulationAnimation(manim.FuncAnimation):
                         progress=progress_callback or False,
                         **{k: v for k, v in options.items() if v is not None})
 
-    def to_html5_video(self, embed_limit=None) -> str:
+    def to_html5_video(self, embed_limit: float | None = None) -> str:
         """As :meth:`matplotlib.animation.Animation.to_html5_video`, with imageio-ffmpeg's
         ffmpeg when there is none on the PATH.
 
@@ -340,9 +353,10 @@ class SimulationAnimation(manim.FuncAnimation):
         # While saving, matplotlib draws the canvas after each frame's update and the
         # writer then draws the figure again in savefig: the first drawing is skipped for
         # writers known to call savefig (a third of the time of a 1000-disk frame).
-        if self._writer_draws and self._fig.canvas.is_saving():
+        if self._writer_draws and self.ax.figure.canvas.is_saving():
             return
-        super()._post_draw(framedata, blit)
+        # (matplotlib's own hook, which its type stubs leave out)
+        super()._post_draw(framedata, blit)  # type: ignore[misc]
 
     def _check_can_start(self, k: int = 0) -> None:
         t = float(self.frame_times[k])

@@ -13,6 +13,7 @@ import matplotlib as mpl
 import matplotlib.colors as mcolors
 import numpy as np
 
+from ..operations import Snapshot
 from ..simulation import Simulation
 
 _COLOR_MODES = ("speed", "species", "mass")
@@ -20,14 +21,17 @@ _COLOR_MODES = ("speed", "species", "mass")
 _BAD_COLOR = "0.45"
 
 ColorBy = str | Sequence | np.ndarray | Callable | None
+# A matplotlib colour: a name or hex string ("C0", "0.15", "#1f77b4"), or RGB(A) floats.
+Color = str | tuple[float, float, float] | tuple[float, float, float, float]
 
 
 class _ColorScheme:
     """What ``color_by`` means: per-disk values through a colormap, or fixed colours."""
 
-    def __init__(self, sim: Simulation, color_by, cmap, vmin, vmax, color) -> None:
+    def __init__(self, sim: Simulation | Snapshot, color_by, cmap, vmin, vmax,
+                 color) -> None:
         n = len(sim)
-        self.values_at: Callable[[Simulation], np.ndarray] | None = None
+        self.values_at: Callable[[Simulation | Snapshot], np.ndarray] | None = None
         self.values: np.ndarray | None = None
         self.rgba: np.ndarray | None = None
         self.label = ""
@@ -79,15 +83,16 @@ class _ColorScheme:
             coll.set_cmap(self.cmap)
             coll.set_norm(self.norm)
 
-    def apply(self, coll, sim: Simulation, idx: np.ndarray) -> None:
-        if not self.numeric:
+    def apply(self, coll, sim: Simulation | Snapshot, idx: np.ndarray) -> None:
+        if self.rgba is not None:  # (not numeric)
             coll.set_facecolor(self.rgba[idx])
             return
         values = self.values if self.values_at is None else self.values_at(sim)
+        assert values is not None  # (numeric: values or values_at, from __init__)
         coll.set_array(values[idx])
 
 
-def _speeds(sim: Simulation) -> np.ndarray:
+def _speeds(sim: Simulation | Snapshot) -> np.ndarray:
     v = sim.velocities
     return np.hypot(v[:, 0], v[:, 1])
 
@@ -108,10 +113,10 @@ def _species_colors(radii: np.ndarray, masses: np.ndarray) -> np.ndarray:
     _, cls = np.unique(pairs, axis=0, return_inverse=True)
     cls = cls.ravel()
     k = int(cls.max()) + 1
-    if k <= 10:
-        palette = mpl.colormaps["tab10"].colors[:k]
-    elif k <= 20:
-        palette = mpl.colormaps["tab20"].colors[:k]
+    if k <= 20:
+        listed = mpl.colormaps["tab10" if k <= 10 else "tab20"]
+        assert isinstance(listed, mcolors.ListedColormap)  # (a list of colours)
+        palette = np.asarray(listed.colors)[:k]
     else:
         palette = mpl.colormaps["viridis"](np.linspace(0, 1, k))
     return mcolors.to_rgba_array(palette)[cls]

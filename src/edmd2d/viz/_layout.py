@@ -4,6 +4,7 @@ time label above the box, and a colour bar added beside the box without shrinkin
 from __future__ import annotations
 
 from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 
 # Figures made here: inches on the longer side (at least _FIG_MIN_SIDE on the other), and
 # the space between the axes and the figure's edges, as a fraction of the figure.
@@ -33,6 +34,14 @@ def _figure_size(width: float, height: float, label: float = 0.0) -> tuple[float
     return max(fig_w, _FIG_MIN_SIDE), max(fig_h, _FIG_MIN_SIDE + label)
 
 
+def _figure_of(ax: Axes) -> Figure:
+    """The figure of ``ax``: a :class:`~matplotlib.figure.Figure`, whose size the
+    drawings set and which the animations save (a subfigure has neither)."""
+    fig = ax.figure
+    assert isinstance(fig, Figure), "edmd2d draws in the axes of a figure, not a subfigure"
+    return fig
+
+
 def _colorbar_beside(ax: Axes, mappable, label: str, region: tuple[float, float],
                      top: float) -> None:
     """A colour bar right of ``ax`` in a strip added to the figure's width.
@@ -44,7 +53,7 @@ def _colorbar_beside(ax: Axes, mappable, label: str, region: tuple[float, float]
     axes' height below the time label strip (``top`` inches), centred on the drawn
     ``region`` (box plus margin, data units).
     """
-    fig = ax.figure
+    fig = _figure_of(ax)
     fw, fh = fig.get_size_inches()
     pos = ax.get_position(original=True)
     x0, y0, aw, ah = pos.x0 * fw, pos.y0 * fh, pos.width * fw, pos.height * fh
@@ -54,15 +63,17 @@ def _colorbar_beside(ax: Axes, mappable, label: str, region: tuple[float, float]
     middle = y0 + 0.5 * (ah - drawn) + 0.5 * scale * bh
     bar_h = 0.8 * (ah - top)
     bar = [x0 + aw + _CBAR_GAP, middle - 0.5 * bar_h, _CBAR_WIDTH, bar_h]
-    cax = fig.add_axes([bar[0] / fw, bar[1] / fh, bar[2] / fw, bar[3] / fh])
+    cax = fig.add_axes((bar[0] / fw, bar[1] / fh, bar[2] / fw, bar[3] / fh))
     fig.colorbar(mappable, cax=cax, label=label)
     # What the ticks, their labels and the axis label take right of the bar, in inches,
     # and then the figure's usual edge.
-    right = cax.get_tightbbox().x1 / fig.dpi - (bar[0] + bar[2])
+    ticks = cax.get_tightbbox()
+    assert ticks is not None  # (None only for axes that are not drawn)
+    right = ticks.x1 / fig.dpi - (bar[0] + bar[2])
     width = fw + _CBAR_GAP + _CBAR_WIDTH + max(right, 0.0) + _FIG_EDGE * fw
     fig.set_size_inches(width, fh)
-    ax.set_position([x0 / width, pos.y0, aw / width, pos.height])
-    cax.set_position([bar[0] / width, bar[1] / fh, bar[2] / width, bar[3] / fh])
+    ax.set_position((x0 / width, pos.y0, aw / width, pos.height))
+    cax.set_position((bar[0] / width, bar[1] / fh, bar[2] / width, bar[3] / fh))
 
 
 def _label_height(font, lines: int) -> float:

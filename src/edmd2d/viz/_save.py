@@ -3,8 +3,10 @@ image, with every check made before the first frame is drawn."""
 
 from __future__ import annotations
 
+import os
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import matplotlib.animation as manim
 import matplotlib.pyplot as plt
@@ -12,19 +14,20 @@ import matplotlib.pyplot as plt
 from ..operations import Snapshot
 from ..simulation import Simulation
 from ._animation import SimulationAnimation
+from ._layout import _figure_of
 from ._scene import draw
 from ._writers import _GIF_SUFFIXES, _VIDEO_SUFFIXES, _check_folder, _save_animation
 
 
 def save(
-    obj,
-    path,
+    obj: manim.Animation | Simulation | Snapshot,
+    path: str | os.PathLike[str],
     *,
     fps: float | None = None,
     dpi: float | None = None,
     colors: int | None = None,
     progress: bool | Callable[[int, int | None], None] = True,
-    **kwargs,
+    **kwargs: Any,
 ) -> Path:
     """Write an animation to a video or GIF, or a simulation's current state to an image.
 
@@ -108,10 +111,11 @@ def save(
             raise ValueError("colors applies to animations saved as .gif, not to stills")
         _check_folder(path)
         ax = draw(obj, **kwargs)
+        fig = _figure_of(ax)  # (draw made it)
         try:
-            ax.figure.savefig(path, dpi=dpi)
+            fig.savefig(path, dpi=dpi)
         finally:
-            plt.close(ax.figure)
+            plt.close(fig)
         return path
     if not isinstance(obj, manim.Animation):
         raise TypeError(

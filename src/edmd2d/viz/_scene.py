@@ -11,6 +11,7 @@ import matplotlib as mpl
 import matplotlib.colors as mcolors
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.artist import Artist
 from matplotlib.axes import Axes
 from matplotlib.collections import EllipseCollection, LineCollection
 from matplotlib.transforms import Bbox, TransformedBbox
@@ -18,11 +19,12 @@ from matplotlib.transforms import Bbox, TransformedBbox
 from .._validate import as_count, as_positive_float, indices_where
 from ..operations import Snapshot
 from ..simulation import Simulation
-from ._colors import ColorBy, _ColorScheme
+from ._colors import Color, ColorBy, _ColorScheme
 from ._layout import (
     _FIG_EDGE,
     _LABEL_GAP_PT,
     _colorbar_beside,
+    _figure_of,
     _figure_size,
     _label_fits,
     _label_height,
@@ -34,17 +36,17 @@ _OUTLINE_MAX_N = 3000
 
 
 def draw(
-    sim: Simulation,
+    sim: Simulation | Snapshot,
     ax: Axes | None = None,
     *,
     color_by: ColorBy = "speed",
-    cmap=None,
+    cmap: str | mcolors.Colormap | None = None,
     vmin: float | None = None,
     vmax: float | None = None,
-    color="C0",
-    edgecolor="0.15",
+    color: Color = "C0",
+    edgecolor: Color = "0.15",
     linewidth: float | None = None,
-    wall_color="k",
+    wall_color: Color = "k",
     colorbar: bool = False,
     show_time: bool = False,
     margin: float = 0.02,
@@ -129,7 +131,7 @@ class _Scene:
 
     def __init__(
         self,
-        sim: Simulation,
+        sim: Simulation | Snapshot,
         ax: Axes | None = None,
         *,
         color_by: ColorBy = "speed",
@@ -234,7 +236,7 @@ class _Scene:
         if show_time:
             # The label goes in a strip added above the box, inside the axes: it covers no
             # disk and no edge, and blitting (which redraws the axes' area) updates it.
-            fw, fh = ax.figure.get_size_inches()
+            fw, fh = _figure_of(ax).get_size_inches()
             pos = ax.get_position(original=True)  # after the colour bar took its share
             bw, bh = w + 2 * pad, h + 2 * pad
             lines = 1 if _label_fits(label_font, pos.width * fw) else 2
@@ -270,7 +272,7 @@ class _Scene:
         self.disks.set_widths(diam)
         self.disks.set_heights(diam)
         self._color.apply(self.disks, sim, idx)
-        changed = [self.disks]
+        changed: list[Artist] = [self.disks]
         if self.trails is not None:
             self._update_trails(pos)
             changed.append(self.trails)
@@ -281,6 +283,7 @@ class _Scene:
         return changed
 
     def _update_trails(self, pos: np.ndarray) -> None:
+        assert self.trails is not None  # (called only where there are trails)
         sel = self._trail_sel
         unwrapped = self.sim.unwrapped_positions[sel]
         # Offset from unwrapped to wrapped coordinates: a whole number of box lengths.
@@ -300,15 +303,15 @@ class _Scene:
             # crosses a periodic edge runs out of the box (and is clipped there) instead of
             # spanning the whole box; a second copy in the frame of its start point shows
             # the part on the other side.
-            starts, ends = [a + sb], [b + sb]
+            start_parts, end_parts = [a + sb], [b + sb]
             wrapped = (sa != sb).any(axis=1)
             if wrapped.any():
-                starts.append(a[wrapped] + sa[wrapped])
-                ends.append(b[wrapped] + sa[wrapped])
+                start_parts.append(a[wrapped] + sa[wrapped])
+                end_parts.append(b[wrapped] + sa[wrapped])
             # All steps of one age share a colour, so they make one path: (start, end, NaN)
             # rows, and Agg lifts the pen at each NaN.  One Path per age instead of one
             # per step cuts the trail's cost per frame from 17 ms to 4 ms at 1000 disks.
-            starts, ends = np.concatenate(starts), np.concatenate(ends)
+            starts, ends = np.concatenate(start_parts), np.concatenate(end_parts)
             verts = np.full((len(starts), 3, 2), np.nan)
             verts[:, 0] = starts
             verts[:, 1] = ends
@@ -316,7 +319,9 @@ class _Scene:
         rgba = np.repeat(self._trail_rgba[None, :], n_seg, axis=0)
         rgba[:, 3] *= np.arange(1, n_seg + 1) / max(n_seg, 1)  # older steps fade out
         self.trails.set_segments(paths)
-        self.trails.set_color(rgba)
+        # (RGBA rows, one per segment, which matplotlib takes though its stubs name
+        # only sequences of colours)
+        self.trails.set_color(rgba)  # type: ignore[arg-type]
 
 
 def _with_periodic_images(pos, rad, size, periodic):

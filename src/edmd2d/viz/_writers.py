@@ -7,6 +7,7 @@ import io
 import shutil
 import sys
 from pathlib import Path
+from typing import Any, TextIO
 
 import matplotlib as mpl
 import matplotlib.animation as manim
@@ -73,7 +74,7 @@ def _save_animation(anim, path: Path, *, ours: bool, fps, dpi, colors, progress,
         if not 2 <= colors <= 256:
             raise ValueError(f"colors must be between 2 and 256 (a GIF palette), got {colors}")
 
-    rc = {}
+    rc: dict[Any, Any] = {}  # (matplotlib's settings for the writing, by name)
     if writer is None:
         if gif:
             if options:
@@ -119,7 +120,8 @@ def _writer_by_name(name: str, filename: str, fps: float, options: dict):
             f"matplotlib's writer {name!r} cannot run here: {hint}; or leave writer out "
             f"to write {filename} with edmd2d's writers"
         )
-    return registry[name](fps=fps, **options)
+    # (matplotlib's writers take any frame rate, though its stubs name an int)
+    return registry[name](fps=fps, **options)  # type: ignore[arg-type]
 
 
 def _check_pillow_can_write(path: Path) -> None:
@@ -178,7 +180,9 @@ class _GifWriter(manim.AbstractMovieWriter):
 
         buf = io.BytesIO()
         self.fig.savefig(buf, **{**savefig_kwargs, "format": "rgba", "dpi": self.dpi})
-        rgba = Image.frombuffer("RGBA", self.frame_size, buf.getbuffer(), "raw", "RGBA", 0, 1)
+        # (Pillow reads the buffer in place, which its stubs do not list)
+        rgba = Image.frombuffer("RGBA", self.frame_size, buf.getbuffer(),  # type: ignore[arg-type]
+                                "raw", "RGBA", 0, 1)
         self._frames.append(rgba.convert("RGB").quantize(self.colors,
                                                          Image.Quantize.FASTOCTREE))
 
@@ -212,10 +216,10 @@ class TextProgress:
         Characters of the whole line.
     """
 
-    def __init__(self, stream=None, width: int = 60) -> None:
+    def __init__(self, stream: TextIO | None = None, width: int = 60) -> None:
         self.stream = sys.stderr if stream is None else stream
         self.width = as_count("width", width)
-        self._bar = None
+        self._bar: Any = None  # (a tqdm bar from the first frame on)
 
     def __call__(self, i: int, n: int | None) -> None:
         from tqdm.auto import tqdm

@@ -21,6 +21,7 @@ ROOT = Path(edmd2d.__file__).parent
 LAYERS = [
     # foundations: no simulation in sight
     {"_version", "_jit", "_validate", "_sums", "_atomic", "_api", "_jsonable", "_facade",
+     "_measurement",
      "progress", "_compile_notice", "theory", "geometry", "_engine"},
     # what the simulation is built from, and what reads a simulation through its
     # public state only

@@ -121,6 +121,34 @@ def test_resume_continues_bit_for_bit(tmp_path, capsys):
     sim.run(until=8.0, operations=[window])
     assert longer["blocks"] == 6
     assert longer["pressure"]["value"] == window.result().pressure
+    # The window reported is the measurement to the run's new end.
+    assert json.loads((whole / "results.json").read_text())["window"] == {
+        "start": 2.0, "duration": 6.0, "blocks": 6, "blocks_measured": 6}
+    run(["info", whole / "checkpoint.edmd2d"])
+    assert "6 of 6 blocks of t=2..8" in capsys.readouterr().out
+
+
+def test_resume_until_before_the_end_stops_there(tmp_path, capsys):
+    config_path = write(tmp_path)
+    whole, parts = tmp_path / "whole", tmp_path / "parts"
+    assert run(["run", config_path, "-o", whole, "--no-progress"]) == 0
+    assert run(["run", config_path, "-o", parts, "--no-progress", "--until", "2.5"]) == 0
+    # An earlier --until than the run's end stops there: the run is not complete, and
+    # a plain resume goes on to the end, to the numbers of the run that never stopped.
+    assert run(["resume", parts / "checkpoint.edmd2d", "--until", "4.5",
+                "--no-progress"]) == 0
+    stopped = json.loads((parts / "results.json").read_text())
+    assert stopped["status"] == "stopped" and stopped["end"] == 6.0
+    assert stopped["window"]["blocks_measured"] == 2
+    capsys.readouterr()
+    assert run(["resume", parts / "checkpoint.edmd2d", "--no-progress"]) == 0
+    assert "complete" not in capsys.readouterr().err
+    ra = json.loads((whole / "results.json").read_text())
+    rb = json.loads((parts / "results.json").read_text())
+    assert rb["status"] == "complete" and ra["measurement"] == rb["measurement"]
+    # A configuration given where a checkpoint is expected says what to do instead.
+    assert run(["resume", config_path]) == 2
+    assert "is a configuration, not a checkpoint" in capsys.readouterr().err
 
 
 def test_info_describes_gsd_files_and_checkpoints(tmp_path, capsys):
@@ -154,6 +182,7 @@ BAD = [
     ("duration = 4.0", "duration = -4.0", "run.duration", "duration"),
     ("[output]", "[outputs]", "outputs", "[outputs]"),
     ("blocks = 4", "blocks = 4.5", "run.blocks", "blocks"),
+    ("temperature = 1.0", "temperature = 0.0", "gas.temperature", "temperature"),
     ("seed = 4", "seed = 4\nthermostat = [0.0, 1.0]", "model.thermostat", "thermostat"),
     ("packing_fraction = 0.3", "packing_fraction = 0.95", "gas.packing_fraction",
      "packing_fraction"),

@@ -225,3 +225,16 @@ def test_describe_and_copy_until(tmp_path):
     (tmp_path / "text.gsd").write_text("not a GSD file\n")
     with pytest.raises(ValueError, match="not a GSD file"):
         gsd.describe(tmp_path / "text.gsd")
+    with pytest.raises(ValueError, match="not a GSD file"):
+        gsd.copy_until(tmp_path / "text.gsd", tmp_path / "out.gsd", 1.0)
+    # Frames written by another program carry no time to cut at.
+    import gsd.hoomd as hoomd
+
+    with hoomd.open(str(tmp_path / "other.gsd"), "w") as f:
+        frame = hoomd.Frame()
+        frame.particles.N = 1
+        frame.particles.position = [[0.0, 0.0, 0.0]]
+        f.append(frame)
+    with pytest.raises(ValueError, match="not written by edmd2d"):
+        gsd.copy_until(tmp_path / "other.gsd", tmp_path / "out.gsd", 1.0)
+    assert not (tmp_path / "out.gsd").exists()

@@ -123,6 +123,19 @@ class RunProtocol:
             return None
         return self._blocks().edge(self.run["blocks"])
 
+    def block_edge(self, b: int) -> float:
+        """The end of block ``b`` of the measurement (``b = 0``: its start).
+
+        Parameters
+        ----------
+        b : int
+
+        Returns
+        -------
+        float
+        """
+        return self._blocks().edge(b)
+
     def blocks_until(self, until: float) -> int:
         """How many blocks end by ``until``: the window's own, or more of the same
         length when the run goes on past the window's end.

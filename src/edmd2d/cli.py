@@ -164,9 +164,9 @@ def _parser() -> argparse.ArgumentParser:
     resume.add_argument("checkpoint", type=Path, metavar="CHECKPOINT",
                         help=f"the checkpoint ({CHECKPOINT_FILE} in the run's directory)")
     resume.add_argument("--until", type=float, metavar="T",
-                        help="run to the simulated time T instead of the run's end (later "
-                             "or earlier; the measurement goes on in blocks of the same "
-                             "length)")
+                        help="stop at the simulated time T: before the run's end, to "
+                             "resume again later; after it, the run's end moves there and "
+                             "the measurement goes on in blocks of the same length")
     resume.add_argument("--output", "-o", type=Path, metavar="DIR",
                         help="write into DIR (default: the checkpoint's directory)")
     resume.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -289,12 +289,16 @@ def _cmd_resume(args) -> int:
              f"state in Python with edmd2d.checkpoint.load('{path}').", sys.stderr)
         return 1
     sim = _load_checkpoint(path)
+    until = meta["end"]
     if args.until is not None:
         if not args.until > sim.time:
             raise UserError(f"--until {args.until:g} must lie after the checkpoint's time "
                             f"t={sim.time:g}")
-        meta["end"] = args.until
-    if sim.time >= meta["end"]:
+        # (Before the run's end: stop there, as run --until does; after it: the run's
+        # end moves, and the measurement goes on in blocks of the same length.)
+        until = args.until
+        meta["end"] = max(meta["end"], until)
+    if sim.time >= until:
         _say(f"the run is complete at t={sim.time:g}; give --until T to go on")
         return 0
     out = args.output if args.output is not None else path.parent
@@ -309,7 +313,7 @@ def _cmd_resume(args) -> int:
         if source.exists():
             _gsd.copy_until(source, out / GSD_FILE, sim.time)
     return _Runner(sim, meta, out, progress=not args.no_progress,
-                   resumed=True).execute(meta["end"])
+                   resumed=True).execute(until)
 
 
 class _Runner:
@@ -366,9 +370,10 @@ class _Runner:
         meta, sim = self.meta, self.sim
         run = meta["config"]["run"]
         what = "resuming" if self.resumed else "running"
+        start, blocks, end = self._planned()
         self._print(f"{what} {len(sim)} disks from t={sim.time:g} to t={until:g}; measuring "
-                    f"t={meta['window_start']:g}..{self.protocol.window_end:g} in "
-                    f"{run['blocks']} blocks (seed {meta['seed']})")
+                    f"t={start:g}..{end:g} in {blocks} blocks of "
+                    f"{run['duration'] / run['blocks']:g} (seed {meta['seed']})")
         self._print("each row: the window so far, mean +- standard error over its blocks")
         self._print(_ROW_HEAD)
         for row in meta["rows"]:
@@ -408,6 +413,12 @@ class _Runner:
             _say(f"{status} at t={sim.time:g}; continue with: edmd2d resume {path}",
                  sys.stderr if status == INTERRUPTED else sys.stdout)
 
+    def _planned(self) -> tuple[float, int, float]:
+        """The measurement to the run's end: its start, its blocks and its end (the
+        configured window, or more blocks of the same length after a resume past it)."""
+        blocks = self.protocol.blocks_until(self.meta["end"])
+        return self.meta["window_start"], blocks, self.protocol.block_edge(blocks)
+
     # -------------------------------------------------------------- the files
     def _annotate(self, meta: dict) -> None:
         meta["wall_seconds"] = self.wall0 + (_time.perf_counter() - self.clock)
@@ -415,12 +426,12 @@ class _Runner:
     def _results(self, status: str) -> dict:
         sim, meta = self.sim, self.meta
         measurement = self.protocol.result()
-        run = meta["config"]["run"]
         files = {"config": CONFIG_FILE, "checkpoint": CHECKPOINT_FILE}
         if meta["config"]["output"]["gsd_every"] is not None:
             files["gsd"] = GSD_FILE
         box = sim.box
         measure = self.protocol.measure
+        planned = self.protocol.blocks_until(meta["end"])
         return {
             "edmd2d": __version__,
             "status": status,
@@ -435,8 +446,9 @@ class _Runner:
                     "periodic": list(box.periodic)},
             "counts": dataclasses.asdict(sim.counts),
             "kinetic_energy": sim.kinetic_energy(),
-            "window": {"start": meta["window_start"], "duration": run["duration"],
-                       "blocks": run["blocks"],
+            "window": {"start": meta["window_start"],
+                       "duration": self.protocol.block_edge(planned) - meta["window_start"],
+                       "blocks": planned,
                        "blocks_measured": 0 if measure is None else measure.blocks},
             "measurement": None if measurement is None else _measurement_json(measurement),
             "table": meta["rows"],
@@ -519,6 +531,9 @@ def _need_gsd(what: str) -> None:
 
 
 def _read_checkpoint_metadata(path: Path) -> dict:
+    if path.suffix == ".toml":
+        raise UserError(f"{path} is a configuration, not a checkpoint: run it with "
+                        f"'edmd2d run {path}'")
     try:
         return _checkpoint.read_metadata(path)
     except FileNotFoundError:
@@ -673,14 +688,18 @@ def _checkpoint_info(path: Path) -> str:
         ("energy", f"kinetic {sim.kinetic_energy():.10g}"),
     ]
     if meta.get("format") == _RUN_FORMAT and meta.get("version") == _RUN_VERSION:
-        run = meta["config"]["run"]
-        done = 0 if meta["measure"] is None else max(len(meta["measure"]["edges"]) - 1, 0)
-        start = meta["window_start"]
+        protocol = RunProtocol(sim, meta, path, run=meta["config"]["run"],
+                               output=meta["config"]["output"])
+        done = 0 if protocol.measure is None else protocol.measure.blocks
+        blocks = protocol.blocks_until(meta["end"])
         lines += [
             ("run", f"of {meta['config_file']}, seed {meta['seed']}, to t={meta['end']:g}"),
-            ("measured", f"{done} of {run['blocks']} blocks of t={start:g}.."
-                         f"{start + run['duration']:g}"),
+            ("measured", f"{done} of {blocks} blocks of t={meta['window_start']:g}.."
+                         f"{protocol.block_edge(blocks):g}"),
         ]
+        if meta.get("failure") is not None:
+            lines.append(("failed", f"at t={meta['failure']['time']:g}: "
+                                    f"{meta['failure']['error']}"))
     return f"{path}: edmd2d checkpoint\n" + _describe(lines)
 
 

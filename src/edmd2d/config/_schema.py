@@ -167,7 +167,7 @@ def _polygon(value):
 _GAS = {
     "n": (_integer(1), REQUIRED),
     "packing_fraction": (_number(0.0, 1.0, lo_open=True, hi_open=True), REQUIRED),
-    "temperature": (_number(0.0), 1.0),
+    "temperature": (_number(0.0, lo_open=True), 1.0),
     "radius": (_number(0.0, lo_open=True), OPTIONAL),
     "mass": (_number(0.0, lo_open=True), OPTIONAL),
     "aspect": (_number(0.0, lo_open=True), 1.0),

@@ -434,10 +434,22 @@ def copy_until(source: str | os.PathLike[str], target: str | os.PathLike[str], t
     ----------
     source, target : str or os.PathLike
     time : float
+
+    Raises
+    ------
+    ValueError
+        If ``source`` is not a GSD file, or a frame of it has no time (it was not
+        written by edmd2d); ``target`` is then left as it was.
     """
     hoomd = _gsd_hoomd()
-    with (replacing_path(target) as tmp, hoomd.open(str(source), "r") as old,
-          hoomd.open(tmp, "w") as new):
-        for frame in old:
+    try:
+        old = hoomd.open(str(source), "r")
+    except Exception as exc:  # (gsd raises several kinds for a file that is not GSD)
+        raise ValueError(f"{source} is not a GSD file ({exc})") from None
+    with old, replacing_path(target) as tmp, hoomd.open(tmp, "w") as new:
+        for k, frame in enumerate(old):
+            if "edmd2d/time" not in frame.log:
+                raise ValueError(f"frame {k} of {source} has no edmd2d/time: it was not "
+                                 "written by edmd2d")
             if float(frame.log["edmd2d/time"][0]) <= time:
                 new.append(frame)

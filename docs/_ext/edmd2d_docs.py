@@ -305,12 +305,21 @@ def _report_seconds(app, doctree) -> None:
 # ------------------------------------------------------ references and the API coverage
 def canonical_name(module, name: str) -> str:
     """Where the documentation of ``module.name`` lives: its defining module, or, for
-    one defined in a private module, the public module that exports it."""
+    one defined in a private module, the public module that exports it (a module of
+    the package rather than the package itself)."""
     obj = getattr(module, name)
     if inspect.ismodule(obj):
         return obj.__name__
     if inspect.isclass(obj) or inspect.isfunction(obj):
         if any(part.startswith("_") for part in obj.__module__.split(".")):
+            # (The package re-exports what its modules do: such a name is documented
+            # by the module of the package that exports it, not by the package.)
+            if module.__name__ == "edmd2d":
+                for modname in public_modules():
+                    other = importlib.import_module(modname)
+                    if modname != "edmd2d" and getattr(other, name, None) is obj \
+                            and name in public_names(other):
+                        return f"{modname}.{name}"
             return f"{module.__name__}.{name}"
         return f"{obj.__module__}.{obj.__qualname__}"
     return f"{module.__name__}.{name}"

@@ -168,6 +168,15 @@ def test_info_describes_gsd_files_and_checkpoints(tmp_path, capsys):
         assert expected in text
     assert run(["info", out / "results.json"]) == 2
     assert "neither a GSD file nor an edmd2d checkpoint" in capsys.readouterr().err
+    # A checkpoint cut short is called damaged, not something else.
+    cut = tmp_path / "cut.edmd2d"
+    cut.write_bytes((out / "checkpoint.edmd2d").read_bytes()[:2000])
+    assert run(["info", cut]) == 2
+    assert "truncated or corrupted" in capsys.readouterr().err
+    # A new run into the directory without a trajectory leaves none of the old one.
+    assert run(["run", write(tmp_path, CONFIG.replace("gsd_every = 1.0\n", "")), "-o", out,
+                "--no-progress"]) == 0
+    assert not (out / "trajectory.gsd").exists()
     plain = tmp_path / "plain.ckpt"
     ed.checkpoint.save(ed.make_gas(10, 0.2, seed=seed_of(1)), plain)
     assert run(["resume", plain]) == 2

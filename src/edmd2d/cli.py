@@ -251,6 +251,10 @@ def _cmd_run(args) -> int:
     sim, removed = _config.build(cfg, seed)
     _make_dir(out)
     (out / CONFIG_FILE).write_text(cfg.text, encoding="utf-8")
+    if gsd_every is None:
+        # (The files of an earlier run in the directory are replaced; a trajectory this
+        # run does not write must not pass for one of its own.)
+        (out / GSD_FILE).unlink(missing_ok=True)
     run = cfg.data["run"]
     meta = RunProtocol.start(sim, {
         "format": _RUN_FORMAT, "version": _RUN_VERSION, "edmd2d": __version__,
@@ -620,7 +624,10 @@ def _cmd_info(args) -> int:
         raise UserError(f"{path}: no such file")
     if path.is_dir():
         raise UserError(f"{path} is a directory; give a .gsd file or a checkpoint")
-    if zipfile.is_zipfile(path):
+    with open(path, "rb") as f:
+        head = f.read(4)
+    # (A checkpoint is a zip file; one cut short is still one, to be called damaged.)
+    if zipfile.is_zipfile(path) or head == b"PK\x03\x04":
         _say(_checkpoint_info(path))
     else:
         _say(_gsd_info(path))

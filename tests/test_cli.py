@@ -128,6 +128,24 @@ def test_resume_continues_bit_for_bit(tmp_path, capsys):
     assert "6 of 6 blocks of t=2..8" in capsys.readouterr().out
 
 
+@pytest.mark.parametrize("model", ["", "[model]\nrestitution = 1.0\n",
+                                   "[model.wall_temperatures]\nbottom = 2.0\n"])
+def test_a_drawn_seed_is_written_into_the_copied_configuration(tmp_path, model):
+    text = CONFIG.replace("[model]\nseed = 4\n", model)
+    if "wall_temperatures" in model:
+        text = text.replace("[gas]\n", "[gas]\nperiodic = false\n")
+    assert run(["run", write(tmp_path, text), "-o", tmp_path / "a", "--no-progress"]) == 0
+    first = json.loads((tmp_path / "a" / "results.json").read_text())
+    copied = (tmp_path / "a" / "config.toml").read_text()
+    assert f"seed = {first['seed']}" in copied
+    # The copy runs the same system again.
+    assert run(["run", tmp_path / "a" / "config.toml", "-o", tmp_path / "b",
+                "--no-progress"]) == 0
+    second = json.loads((tmp_path / "b" / "results.json").read_text())
+    assert second["seed"] == first["seed"]
+    assert second["measurement"] == first["measurement"]
+
+
 def test_resume_until_before_the_end_stops_there(tmp_path, capsys):
     config_path = write(tmp_path)
     whole, parts = tmp_path / "whole", tmp_path / "parts"

@@ -246,11 +246,13 @@ def _cmd_run(args) -> int:
     if gsd_every is not None:
         _need_gsd("[output] gsd_every")
     seed = cfg.data["model"]["seed"]
+    text = cfg.text
     if seed is None:
         seed = secrets.randbits(32)
+        text = _with_seed(cfg.text, seed)
     sim, removed = _config.build(cfg, seed)
     _make_dir(out)
-    (out / CONFIG_FILE).write_text(cfg.text, encoding="utf-8")
+    (out / CONFIG_FILE).write_text(text, encoding="utf-8")
     if gsd_every is None:
         # (The files of an earlier run in the directory are replaced; a trajectory this
         # run does not write must not pass for one of its own.)
@@ -273,6 +275,27 @@ def _cmd_run(args) -> int:
         until = args.until
     return _Runner(sim, meta, out, progress=not args.no_progress,
                    resumed=False).execute(until)
+
+
+def _with_seed(text: str, seed: int) -> str:
+    """The configuration ``text`` with the seed drawn for it written into ``[model]``,
+    so that the copy in the output directory runs the same system again (``text`` as
+    it is where the seed cannot be put in plainly)."""
+    lines = text.splitlines()
+    entry = f"seed = {seed}  # drawn by edmd2d run"
+    heads = [k for k, line in enumerate(lines)
+             if line.split("#", 1)[0].strip() == "[model]"]
+    if heads:
+        lines.insert(heads[0] + 1, entry)
+    else:
+        lines += ["", "[model]", entry]
+    new = "\n".join(lines) + "\n"
+    try:
+        if _config.loads(new).data["model"]["seed"] == seed:
+            return new
+    except _config.ConfigError:
+        pass
+    return text
 
 
 def _cmd_resume(args) -> int:

@@ -121,7 +121,7 @@ class RunProtocol:
         """The end of the measurement window (``None`` before its start is known)."""
         if self.meta["window_start"] is None:
             return None
-        return self._blocks().edge(self.run["blocks"])
+        return self.block_edge(self.run["blocks"])
 
     def block_edge(self, b: int) -> float:
         """The end of block ``b`` of the measurement (``b = 0``: its start).

@@ -406,6 +406,7 @@ aspect = 0.5
 restitution = 0.9
 wall_restitution = 0.9
 gravity = [0.0, -1.0]
+resting = false
 seed = 1
 [run]
 equilibrate = 5.0
@@ -417,10 +418,11 @@ gsd_every = 10.0
 
 
 def test_a_failed_run_keeps_what_it_measured_and_resume_says_why(tmp_path, capsys):
-    """Inelastic disks poured under gravity settle until two rest on each other (an
-    inelastic collapse no tc ends): the run exits 1, but results.json holds the blocks
-    measured before, marked failed with the error, and the checkpoint the state before
-    the failure; resuming it says why it stopped and what to change, and runs nothing."""
+    """Inelastic disks poured under gravity, not allowed to come to rest, settle until
+    two lie on each other (an inelastic collapse no tc ends): the run exits 1, but
+    results.json holds the blocks measured before, marked failed with the error, and
+    the checkpoint the state before the failure; resuming it says why it stopped and
+    what to change, and runs nothing."""
     path = write(tmp_path, COLLAPSING)
     assert main(["run", str(path), "--no-progress"]) == 1
     err = capsys.readouterr().err

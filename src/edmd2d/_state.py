@@ -25,6 +25,7 @@ from ._engine import layout as _layout
 from ._engine import loop as _loop
 from ._engine import overlap as _overlap
 from ._engine import queue as _queue
+from ._engine import resting as _resting
 from ._validate import about, as_generator, indices_where
 from .geometry import BOX_WALL_EQUATIONS, MAX_LENGTH
 
@@ -169,6 +170,12 @@ class EngineState:
         self.species = species
         self.model = model
         self.families = families
+        # Disks at rest (the registered family "resting"): each one's supports, and room
+        # for the cascade of a wake (see _engine/resting.py).
+        self.rest_supports = (np.full((n, _resting.MAX_SUPPORTS), -1, np.int32)
+                              if "resting" in families else None)
+        self.rest_frozen = np.zeros((n, 2)) if "resting" in families else None
+        self.rest_t_static = np.full(n, -np.inf) if "resting" in families else None
         self.counts = np.zeros(_layout.N_COUNTS, np.int64)
         self.acc = np.zeros(_layout.N_ACC, np.float64)
         self.set_log(0)
@@ -225,6 +232,14 @@ class EngineState:
         state.update(self.tables(*tables, *(state.pop(name) for name in
                                             ("hv", "qhead", "qs", "qf"))))
         state["listener"] = None
+        # (Saved before disks could rest: no supports, and two counters fewer.)
+        state.setdefault("rest_supports", None)
+        state.setdefault("rest_frozen", None)
+        state.setdefault("rest_t_static", None)
+        counts = state["counts"]
+        if len(counts) < _layout.N_COUNTS:
+            state["counts"] = np.concatenate(
+                [counts, np.zeros(_layout.N_COUNTS - len(counts), np.int64)])
         vars(self).update(state)
 
     # ------------------------------------------------------------------ grid
@@ -334,6 +349,7 @@ class EngineState:
     def place(self, pos: np.ndarray, rest: np.ndarray) -> None:
         """Move every disk to ``pos`` (checked, user order) at the current time, with
         the supports ``rest``; rebuild the grid and predict every disk afresh."""
+        self.wake_all()
         self.sync_all()
         self.S[:, _layout.X:_layout.Y + 1] = pos[self.order]
         _layout.support_view(self.S)[:] = rest[self.order]
@@ -346,6 +362,7 @@ class EngineState:
     def set_velocities(self, vel: np.ndarray, rest: np.ndarray) -> None:
         """Give every disk the velocity ``vel`` (checked, user order) at the current
         time, with the supports ``rest``, and predict every disk afresh."""
+        self.wake_all()
         self.sync_all()
         self.S[:, _layout.VX:_layout.VY + 1] = vel[self.order]
         _layout.support_view(self.S)[:] = rest[self.order]
@@ -467,6 +484,12 @@ class EngineState:
         and the TC model always (a model of heated walls or a thermostat alone runs
         its contacts with ``e = 1`` through them), the others as it uses them."""
         families = _NO_MODEL if self.model is None else self.model.engine_families()
+        rest = self.rest_bundle()
+        if rest is not None and families.contact is not None:
+            # (Where disks come to rest, the box walls hold disks by resting.slide, not by
+            # the TC model's hold.)
+            families = families._replace(
+                contact=families.contact._replace(soft=rest.soft, hold=0.0))
         return _loop.run(
             _layout.Control(t_end, max_collisions, max_events, mode, out, info),
             _layout.Particles(self.S, self.E, self.stamp, self.nxt, self.prv,
@@ -478,8 +501,39 @@ class EngineState:
             _layout.Tallies(self.counts, self.acc, self.wacc),
             _layout.Log(self.log_t, self.log_e, self.log_n, self.log_j),
             families.contact, families.heated, families.thermostat, families.uniforms,
-            self.gravity_bundle(), self.growth_bundle(),
+            self.gravity_bundle(), self.growth_bundle(), rest,
         )
+
+    def rest_bundle(self):
+        """The engine's family of disks at rest: ``None`` or a ``layout.Rest``."""
+        supports, frozen, t_static = self.rest_supports, self.rest_frozen, self.rest_t_static
+        if supports is None or frozen is None or t_static is None:
+            return None
+        rest = self.families["resting"]
+        return _layout.Rest(rest.speed, rest.gap, rest.wake, rest.soft, supports,
+                            frozen, t_static,
+                            np.empty(len(self.S), np.int32),
+                            np.empty(_resting.CANDIDATES, np.int64),
+                            np.empty(_resting.CANDIDATES))
+
+    def wake_all(self) -> None:
+        """Wake every disk at rest (before its velocity, its position or the forces on
+        it are set): each resumes the velocity it came to rest with (see
+        ``_engine/resting.py``); the caller predicts every disk afresh."""
+        supports, frozen_all = self.rest_supports, self.rest_frozen
+        if supports is None or frozen_all is None:
+            return
+        support = _layout.support_view(self.S)
+        resting = support & _layout.RESTING != 0
+        self.S[resting, _layout.T] = self.time
+        frozen = frozen_all[resting]
+        self.S[resting, _layout.VX:_layout.VY + 1] = frozen
+        self.acc[_layout.A_DISSIPATED] -= float(
+            0.5 * ((frozen ** 2).sum(axis=1) / self.invm[resting]).sum())
+        support[resting] = 0
+        supports[:] = -1
+        frozen_all[:] = 0.0
+        self.counts[_layout.C_WAKES] += int(resting.sum())
 
     def gravity_bundle(self):
         """The engine's gravity family: ``None`` (straight-line flight) or a
@@ -529,7 +583,17 @@ class EngineState:
         # (The queue times are passed twice, as the loop does.)
         _queue.build(self.time, times, times, table, hv, qhead, qs, qf)
         model = None if self.model is None else self.model.permuted(perm)
+        supports = self.rest_supports
+        if supports is not None:  # (disk rows renumbered, wall codes kept)
+            supports = supports[perm]
+            disk = supports >= 0
+            supports[disk] = inv[supports[disk]]
         vars(self).update(self.tables(state, table, hv, qhead, qs, qf),
+                          rest_supports=supports,
+                          rest_frozen=(None if self.rest_frozen is None
+                                       else self.rest_frozen[perm]),
+                          rest_t_static=(None if self.rest_t_static is None
+                                         else self.rest_t_static[perm]),
                           mass=self.mass[perm], order=self.order[perm],
                           image=self.image[perm], head=head, model=model,
                           since_reorder=0)
@@ -746,10 +810,14 @@ class EngineState:
             partner = f"disk {int(self.order[j])}" if kind == _layout.DISK else where
             streak = self.model.streak
             involved = np.sort(self.order[streak >= streak.max() // 10])
-            if self.gravity is not None:
+            if self.gravity is not None and self.rest_supports is None:
                 advice = ("Under gravity this is a disk at rest on another disk, a peg or "
-                          "a segment, which no tc ends: only box walls hold disks at "
-                          "rest (see docs/gravity-and-heat.md).")
+                          "a segment, which no tc ends: let disks come to rest "
+                          "(resting=True, the default with restitution below 1; see "
+                          "docs/gravity-and-heat.md).")
+            elif self.gravity is not None:
+                advice = ("Disks coming to rest did not end it: please report the "
+                          "system that does this.")
             elif self.model.tc > 0.0:
                 advice = (f"The TC model (tc={self.model.tc}) did not end it: a larger tc "
                           "would, unless the disks are confined with no room to move.")

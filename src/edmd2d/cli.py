@@ -312,7 +312,7 @@ def _cmd_resume(args) -> int:
         _say(f"edmd2d: this run failed at t={failure['time']:g}: {failure['error']}\n"
              "Continuing from its checkpoint would meet the same event.  Change the "
              "configuration (for an inelastic collapse, a larger [model] tc; for disks "
-             "at rest under gravity, walls that hold them) and run it again, or load the "
+             "at rest under gravity, [model] resting = true) and run it again, or load the "
              f"state in Python with edmd2d.checkpoint.load('{path}').", sys.stderr)
         return 1
     sim = _load_checkpoint(path)

@@ -21,7 +21,7 @@ Examples
 --------
 >>> from edmd2d import physics
 >>> list(physics.FAMILIES)
-['restitution', 'gravity', 'heated_walls', 'thermostat', 'growth']
+['restitution', 'gravity', 'heated_walls', 'thermostat', 'growth', 'resting']
 >>> physics.Thermostat.check(thermostat=(1.0, 0.5))
 Thermostat(temperature=1.0, rate=0.5)
 >>> physics.Gravity.check(gravity=(0.0, 0.0)) is None   # (no gravity: straight flights)
@@ -46,7 +46,7 @@ from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, Box
 
 __all__ = ["Keyword", "System", "Family", "FAMILIES", "KEYWORDS", "register", "unregister",
            "owner", "about",
-           "Restitution", "Gravity", "HeatedWalls", "Thermostat", "Growth"]
+           "Restitution", "Gravity", "HeatedWalls", "Thermostat", "Growth", "Resting"]
 
 
 @dataclass(frozen=True)
@@ -63,9 +63,10 @@ class Keyword:
     kind : str
         What a configuration file gives: ``"coefficient"`` (a number in ``(0, 1]``),
         ``"coefficients"`` (one, or a square table per pair of species),
-        ``"duration"`` (a number ``>= 0``), ``"vector"`` (two numbers) or
-        ``"walls"`` (a table ``{wall = kT}``); ``""`` for a keyword that configuration
-        files do not take.
+        ``"duration"`` (a number ``>= 0``), ``"vector"`` (two numbers),
+        ``"switch"`` (true or false), ``"length"`` (a number ``> 0``) or ``"walls"``
+        (a table ``{wall = kT}``); ``""`` for a keyword that configuration files do not
+        take.
     doc : str
         One line on what it sets.
     """
@@ -89,6 +90,11 @@ class System:
     velocities : ndarray, shape (N, 2)
     species : ndarray of int32, shape (N,)
     time : float
+    gravity : ndarray, shape (2,), or None
+        The acceleration of gravity (``None``: none), for the families checked after
+        the built-in ones (the registered families).
+    inelastic : bool
+        Whether some coefficient of restitution is below 1 (as :attr:`gravity`).
     """
 
     box: Box
@@ -98,6 +104,8 @@ class System:
     masses: np.ndarray
     species: np.ndarray
     time: float
+    gravity: np.ndarray | None = None
+    inelastic: bool = False
 
 
 class Family:
@@ -122,6 +130,9 @@ class Family:
     #: otherwise it keeps the family in :attr:`Simulation.families
     #: <edmd2d.Simulation.families>`.
     built_in: ClassVar[bool] = False
+    #: Whether the family is checked even when none of its keywords is given (a
+    #: family on by default where the system calls for it).
+    always: ClassVar[bool] = False
 
     @classmethod
     def check(cls, system: System | None = None, **values: Any) -> Family | None:
@@ -659,14 +670,145 @@ def unregister(name: str) -> None:
         del KEYWORDS[kw.name], _OWNER[kw.name]
 
 
-for _family in (Restitution, Gravity, HeatedWalls, Thermostat, Growth):
+@dataclass(frozen=True, eq=False)
+class Resting(Family):
+    """Disks that come to rest under gravity: a settled bed stops being simulated.
+
+    After each collision a disk whose speed is at most :attr:`speed` is put to rest if
+    it is held: its supports, the static bodies within :attr:`gap` of it (disks at
+    rest, immovable disks, wall segments and their end points, box walls; not heated
+    walls), can hold it without friction (the direction against gravity lies strictly
+    inside the cone of their normals, or one of them is a flat wall whose normal points
+    against gravity).  Its kinetic energy then counts as dissipated, and it holds no
+    event until it wakes: when a flying disk hits it with a normal speed above
+    :attr:`wake`, when a support of its wakes (a cascade upwards), when the thermostat
+    redraws its velocity, or when the velocities, positions, gravity or walls are set.
+    A softer impact bounces off it as off a fixed body.  A bounce on a box wall that
+    gravity presses a disk into, slower than :attr:`speed`, leaves it sliding along
+    the wall.
+
+    On by default under gravity with an inelastic model (a coefficient of restitution
+    below 1): the bounces of a disk settling on others would otherwise shrink without
+    end (an inelastic collapse).  Elastic disks never come to rest.
+
+    Attributes
+    ----------
+    height : float
+        The criteria's length ``h``: a disk comes to rest when its kinetic energy
+        could lift it by at most ``h``, on supports at most ``h`` away.
+    speed : float
+        ``sqrt(2 |g| h)``: the fastest a disk comes to rest.
+    gap : float
+        ``h``: the widest gap to a support.
+    wake : float
+        ``sqrt(2 |g| h)``: the slowest impact that wakes a resting disk.
+    soft : float
+        ``speed / 10``: impacts with a normal speed below it are elastic (the
+        coefficient of restitution of real grains tends to 1 at small impact speeds);
+        without it a disk riding on one that slides along the floor would bounce ever
+        lower, without end.
+    """
+
+    name: ClassVar[str] = "resting"
+    always: ClassVar[bool] = True
+    keywords: ClassVar[tuple[Keyword, ...]] = (
+        Keyword("resting", None, "switch",
+                "whether slow, held disks come to rest under gravity (default: with an "
+                "inelastic model)"),
+        Keyword("rest_height", None, "length",
+                "the length of the rest criteria (default 1e-3 of the smallest diameter)"),
+    )
+
+    height: float
+    speed: float
+    gap: float
+    wake: float
+    soft: float
+
+    @classmethod
+    def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
+            cls, system: System | None = None, *, resting: bool | None = None,
+            rest_height: float | None = None) -> Resting | None:
+        """Resting disks where ``resting`` asks for them (``None``: under gravity with
+        an inelastic model), with the criteria's length ``rest_height``.
+
+        Parameters
+        ----------
+        system : System
+            Its gravity, whether it is inelastic, and its radii.
+        resting : bool, optional
+        rest_height : float, optional
+            ``> 0``; default ``1e-3`` of the smallest diameter.
+
+        Returns
+        -------
+        Resting or None
+
+        Raises
+        ------
+        TypeError
+            For a ``resting`` that is not a bool or ``None``.
+        ValueError
+            For ``resting=True`` without gravity, or a ``rest_height`` that is not a
+            finite number ``> 0``.
+        """
+        assert system is not None  # (checked with the system, which it needs)
+        with about("resting"):
+            if resting is not None and not isinstance(resting, (bool, np.bool_)):
+                raise TypeError(f"resting must be True, False or None (the default), "
+                                f"got {resting!r}")
+        with about("rest_height"):
+            if rest_height is None:
+                h = 2e-3 * float(system.radii.min())
+            else:
+                h = float(as_float_array("rest_height", rest_height, ()))
+                if not h > 0.0:
+                    raise ValueError(f"rest_height must be > 0 (a length), got {h}")
+        if resting is False:
+            return None
+        if system.gravity is None:
+            if resting:
+                with about("resting"):
+                    raise ValueError("resting=True needs gravity: without it no disk is "
+                                     "held anywhere")
+            return None
+        if resting is None and not system.inelastic:
+            return None
+        v = float(np.sqrt(2.0 * np.hypot(*system.gravity) * h))
+        return cls(h, v, h, v, 0.1 * v)
+
+    def log(self) -> dict:
+        """The criteria's length, as ``rest_height``.
+
+        Returns
+        -------
+        dict of str to ndarray
+        """
+        return {"rest_height": np.array([self.height], np.float64)}
+
+    @classmethod
+    def keywords_from_log(cls, log: dict) -> dict:
+        """``resting=True`` with the logged ``rest_height``.
+
+        Parameters
+        ----------
+        log : dict of str to ndarray
+
+        Returns
+        -------
+        dict
+        """
+        return {"resting": True, "rest_height": float(log["rest_height"][0])}
+
+
+for _family in (Restitution, Gravity, HeatedWalls, Thermostat, Growth, Resting):
     register(_family)
 
 
 def check_registered(system: System, values: dict) -> dict:
     """The registered families that are not built in, built from the keywords in
-    ``values`` (a family none of whose keywords is given is left out, as is one whose
-    check gives ``None``).
+    ``values`` (a family none of whose keywords is given is left out, unless it is
+    checked :attr:`~Family.always`, as is one whose check gives ``None``).
 
     Parameters
     ----------
@@ -693,7 +835,7 @@ def check_registered(system: System, values: dict) -> dict:
     out = {}
     for name, family in FAMILIES.items():
         given = {kw.name: values[kw.name] for kw in family.keywords if kw.name in values}
-        if family.built_in or not given:
+        if family.built_in or not (given or family.always):
             continue
         built = family.check(system, **given)
         if built is not None:

@@ -4,6 +4,7 @@ state (``edmd2d._state.EngineState``), advances it and reads it."""
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
@@ -50,6 +51,10 @@ class Counts:
         and recomputed; not physical events, not included in ``events``.
     redraws : int
         Velocities redrawn by the thermostat.
+    rests : int
+        Disks put to rest (see :class:`edmd2d.physics.Resting`).
+    wakes : int
+        Disks at rest woken.
     """
 
     collisions: int
@@ -58,6 +63,8 @@ class Counts:
     events: int
     stale: int
     redraws: int = 0
+    rests: int = 0
+    wakes: int = 0
 
 
 class Simulation(SimulationBase):
@@ -238,15 +245,16 @@ class Simulation(SimulationBase):
         _checks.check_room(box, vel, rad)
         _checks.check_periodic_room(box, rad)
         cell_size = _checks.as_cell_size(cell_size, rad)
+        contact = _physics.Restitution.check(system, restitution=restitution,
+                                             wall_restitution=wall_restitution, tc=tc)
         model = _state.build_model(
-            system, seed,
-            _physics.Restitution.check(system, restitution=restitution,
-                                       wall_restitution=wall_restitution, tc=tc),
+            system, seed, contact,
             _physics.HeatedWalls.check(system, wall_temperatures=wall_temperatures),
             _physics.Thermostat.check(system, thermostat=thermostat))
         if growth_family is not None:
             growth_family.check_combination(model, g)
-        families = _physics.check_registered(system, physics)
+        families = _physics.check_registered(
+            dataclasses.replace(system, gravity=g, inelastic=not contact.elastic), physics)
         self._state = _state.EngineState(
             box, wall_list, pos, vel, rad, mass, float(t0),
             species=None if species is None else spec, model=model, gravity=g,
@@ -281,6 +289,14 @@ class Simulation(SimulationBase):
     @positions.setter
     def positions(self, positions) -> None:
         self.set_positions(positions)
+
+    @property
+    def resting(self) -> np.ndarray:
+        """Which disks are at rest, shape (N,), bool (a read-only copy): disks that came
+        to rest under gravity (see :class:`edmd2d.physics.Resting`); all ``False``
+        where disks do not come to rest."""
+        support = _layout.support_view(self._state.S)
+        return self._state.to_user((support & _layout.RESTING) != 0)
 
     @property
     def unwrapped_positions(self) -> np.ndarray:
@@ -357,7 +373,7 @@ class Simulation(SimulationBase):
                              int(c[_layout.C_CROSSINGS]))
         kicks = int(c[_layout.C_KICKS])
         return Counts(coll, wall, cross, coll + wall + cross + kicks, int(c[_layout.C_STALE]),
-                      kicks)
+                      kicks, int(c[_layout.C_RESTS]), int(c[_layout.C_WAKES]))
 
     def kinetic_energy(self) -> float:
         """Total kinetic energy of the movable disks, ``sum m v^2 / 2``.
@@ -462,7 +478,10 @@ class Simulation(SimulationBase):
     def dissipated_energy(self) -> float:
         """Kinetic energy lost in inelastic collisions since creation (0 for elastic
         disks): ``kinetic_energy() + dissipated_energy()`` stays constant to rounding
-        (while no immovable disk moves).
+        (while no immovable disk moves; under gravity ``total_energy()`` takes the place
+        of ``kinetic_energy()``).  Where disks come to rest (:class:`edmd2d.physics.Resting`)
+        it includes the kinetic energy of the disks at rest (given back when they
+        wake) and less the small lifts that keep a disk from pressing on a body at rest.
 
         Returns
         -------

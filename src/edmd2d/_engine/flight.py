@@ -12,9 +12,10 @@ layer that moves a disk along its flight goes through this module.
 The ``gravity`` argument chooses the flight: ``None`` for straight lines (the default,
 which compiles to the plain formulas), or a ``layout.Gravity``: the acceleration
 ``(gx, gy)``, the inverse masses ``invm`` (0 for an immovable disk) and each disk's
-``support`` (``layout.S_SUPPORT``): the box walls it rests on, one bit per side.  A
-disk resting on a wall (put to rest by an inelastic model, :mod:`.response`) slides
-along it: the component of ``g`` normal to that wall is held by the wall.
+``support`` (``layout.S_SUPPORT``): the box walls it slides on, one bit per side, and
+whether it is at rest.  A disk held on a box wall (by an inelastic model,
+:mod:`.response`, :mod:`.resting`) slides along it: the component of ``g`` normal to
+that wall is held by the wall.  A disk at rest (:mod:`.resting`) does not move.
 """
 
 from __future__ import annotations
@@ -24,13 +25,14 @@ import math
 import numpy as np
 
 from .._jit import njit
-from .layout import VX, VY, T, X, Y
+from .layout import RESTING, VX, VY, T, X, Y
 
 
 @njit
 def acceleration(i, gravity):
     """The acceleration of disk ``i``: ``g`` if it is movable, less the components
-    that the walls it rests on hold; 0 for an immovable disk."""
+    that the walls it slides on hold; 0 for an immovable disk or one at rest
+    (:mod:`.resting`)."""
     if gravity is None:
         return 0.0, 0.0
     if gravity.invm[i] == 0.0:
@@ -38,6 +40,8 @@ def acceleration(i, gravity):
     rest = gravity.support[i]
     if rest == 0:
         return gravity.gx, gravity.gy
+    if rest & RESTING:
+        return 0.0, 0.0
     return (0.0 if rest & 3 else gravity.gx), (0.0 if rest & 12 else gravity.gy)
 
 
@@ -95,7 +99,7 @@ def synchronized_positions(t, S, gi, gf, out, gravity):
 def accelerations(gravity):
     """Per-disk accelerations, shape (N, 2) (numpy; see :func:`acceleration`)."""
     acc = np.zeros((len(gravity.invm), 2))
-    movable = gravity.invm > 0.0
+    movable = (gravity.invm > 0.0) & (gravity.support & RESTING == 0)
     acc[movable & (gravity.support & 3 == 0), 0] = gravity.gx
     acc[movable & (gravity.support & 12 == 0), 1] = gravity.gy
     return acc

@@ -26,8 +26,9 @@ The bundles (:class:`typing.NamedTuple`, read by field name in the compiled code
 declared at the end: the loop's own state (:class:`Control`, :class:`Particles`,
 :class:`Grid`, :class:`Walls`, :class:`Calendar`, :class:`Tallies`, :class:`Log`) and
 one per physics family (:class:`Contact`, :class:`HeatedWalls`, :class:`Thermostat`,
-:class:`Uniforms`, :class:`Gravity`, :class:`Growth`).  A family that a system does not
-use is passed as ``None``: numba prunes its branches from the loop compiled for it.
+:class:`Uniforms`, :class:`Gravity`, :class:`Growth`, :class:`Rest`).  A family that a
+system does not use is passed as ``None``: numba prunes its branches from the loop
+compiled for it.
 """
 
 from __future__ import annotations
@@ -61,8 +62,10 @@ R = _col("R", "S", np.float64, 5)
 S_STAMP = _col("S_STAMP", "S", np.int32, 12)  # invalidation counter
 S_NEXT = _col("S_NEXT", "S", np.int32, 13)  # next disk in the cell's list (-1: none)
 S_PREV = _col("S_PREV", "S", np.int32, 14)  # previous disk in the cell's list
-# Under gravity: the box walls a disk rests on, one bit per side (1 << side; 0: none).
+# Under gravity: the box walls a disk slides on, one bit per side (1 << side; 0: none),
+# and RESTING for a disk at rest (see resting.py).
 S_SUPPORT = _col("S_SUPPORT", "S", np.int32, 15)
+RESTING = 16
 N_STATE = ROW_BYTES // 8  # float64 columns per S row
 
 # --- E: the bookkeeping row (E is int32; its float64 columns are those of
@@ -189,7 +192,9 @@ C_WALL = 1
 C_CROSSINGS = 2
 C_STALE = 3
 C_KICKS = 4  # thermostat velocity redraws
-N_COUNTS = 5
+C_RESTS = 5  # disks put to rest
+C_WAKES = 6  # resting disks woken
+N_COUNTS = 7
 
 # Accumulators (acc[...]): sum of J*|r_ij| over disk collisions (collision virial), the
 # impulse delivered to each box wall (x=0, x=W, y=0, y=H) and to all wall segments, the
@@ -377,6 +382,9 @@ class Contact(NamedTuple):
     streak: np.ndarray
     #: The ``tc`` with which box walls hold disks at rest under gravity (0: never).
     hold: float
+    #: Impacts with a normal speed below this are elastic (0: none; set where disks
+    #: come to rest, see :mod:`.resting`).
+    soft: float = 0.0
 
 
 class HeatedWalls(NamedTuple):
@@ -426,6 +434,35 @@ class Growth(NamedTuple):
     rate: float
     #: The time at which the stored radii hold.
     t0: float
+
+
+class Rest(NamedTuple):
+    """Disks that come to rest under gravity (see :mod:`.resting`)."""
+
+    #: A disk slower than this after a collision comes to rest where it is held.
+    speed: float
+    #: The largest gap to a body that counts as touching it (a support).
+    gap: float
+    #: A resting disk hit with a normal speed above this wakes; a softer impact
+    #: bounces off it.
+    wake: float
+    #: Impacts with a normal speed below this are elastic (``Contact.soft``).
+    soft: float
+    #: int32, shape (N, ``resting.MAX_SUPPORTS``): each resting disk's supports (disk
+    #: rows, or walls: see :mod:`.resting`; -1: none).
+    supports: np.ndarray
+    #: Shape (N, 2): the velocity each resting disk came to rest with (resumed when it
+    #: wakes).
+    frozen: np.ndarray
+    #: Shape (N,): the time each disk last met a static body (a resting disk or a
+    #: wall; -inf: never).
+    t_static: np.ndarray
+    #: int32, shape (N,): room for the cascade of a wake.
+    stack: np.ndarray
+    #: int64, shape (``resting.CANDIDATES``,): room for the supports examined.
+    codes: np.ndarray
+    #: float64, shape (``resting.CANDIDATES``,): their normals' angles from "up".
+    angles: np.ndarray
 
 
 class ModelFamilies(NamedTuple):

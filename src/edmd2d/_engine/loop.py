@@ -42,7 +42,11 @@ argument per physics family, each ``None`` when unused:
     radii that grow linearly in time (``layout.Growth``), ``S[i, R] (1 + rate (t -
     t0))`` (:func:`.predict.growth_factor`), in straight-line flight with elastic
     contacts.  The grid's cells must stay wider than the largest diameter: the caller
-    stops the run before they no longer are and rebuilds it.
+    stops the run before they no longer are and rebuilds it;
+``rest``
+    disks that come to rest under gravity (``layout.Rest``, :mod:`.resting`; with
+    ``gravity`` only): after each collision a slow, held disk is put to rest, and a
+    flying disk meets a resting one as a fixed circle unless the impact wakes it.
 
 numba prunes the branches of an argument that is ``None``, so each combination of
 families compiles its own ``run``, only when used, and the elastic default compiles to
@@ -56,7 +60,7 @@ import math
 import numpy as np
 
 from .._jit import kernel, njit
-from . import lookahead, prefetch, queue, response
+from . import lookahead, prefetch, queue, response, resting
 from .flight import drift, velocity_at
 from .grid import insert, remove
 from .layout import (
@@ -136,7 +140,7 @@ def _log_event(k, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm, order,
 
 @kernel
 def run(control, particles, grid, walls, calendar, tallies, log,
-        contact, heated, thermostat, uniforms, gravity, growth):
+        contact, heated, thermostat, uniforms, gravity, growth, rest):
     """Process events in time order (``control.mode`` RUN_EVENTS), or (``mode``
     PREDICT_ALL) predict every disk's next event from the time ``out[0]`` and rebuild
     the queue.  (``t_end``, ``max_collisions``, ``max_events``, ``mode``, ``out`` and
@@ -318,17 +322,43 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 else:
                     drift(i, t, S, gravity)
                     drift(j, t, S, gravity)
-                    # A contact that rounding left not approaching exchanges nothing but is
-                    # a processed contact event like any other (as for walls, and as in the
-                    # reference): counted, logged, both disks re-predicted.
-                    response.collide_pair(i, j, t, aux, S, invm, acc, gf, contact, gravity,
-                                          growth)
+                    still = False  # (j at rest, and staying so)
+                    if rest is not None:
+                        still = resting.meet(i, j, t, aux, S, E, tcand, stamp, qt, hv, qhead,
+                                             qs, qf, invm, gi, gf, head, nxt, wa, wb, wstart,
+                                             wwall, wsx, wsy, acc, counts, heated, gravity,
+                                             rest)
+                    if rest is not None and still:
+                        if resting.collide_static(i, j, t, aux, S, invm, acc, gf, contact,
+                                                  gravity, rest):
+                            # (Stopped in a wedge: at rest there if held, else it leaves j.)
+                            if not resting.settle(i, t, S, E, tcand, stamp, qt, hv, qhead, qs,
+                                                  qf, invm, gi, gf, head, nxt, wa, wb, wstart,
+                                                  wwall, wsx, wsy, acc, counts, heated,
+                                                  gravity, rest):
+                                resting.lift_pair(i, j, aux, S, invm, acc, gf, gravity, rest)
+                        stamp[i] += 1
+                        redo0 = i
+                    else:
+                        # A contact that rounding left not approaching exchanges nothing but
+                        # is a processed contact event like any other (as for walls, and as
+                        # in the reference): counted, logged, both disks re-predicted.
+                        response.collide_pair(i, j, t, aux, S, invm, acc, gf, contact,
+                                              gravity, growth)
+                        if rest is not None:
+                            resting.part(i, j, aux, S, invm, acc, gf, gravity, rest)
+                        stamp[i] += 1
+                        stamp[j] += 1
+                        redo0 = i
+                        redo1 = j
                     counts[C_COLLISIONS] += 1
                     n_coll += 1
-                    stamp[i] += 1
-                    stamp[j] += 1
-                    redo0 = i
-                    redo1 = j
+                    if rest is not None:
+                        for k in range(2 if redo1 >= 0 else 1):
+                            resting.settle(i if k == 0 else j, t, S, E, tcand, stamp, qt, hv,
+                                           qhead, qs, qf, invm, gi, gf, head, nxt, wa, wb,
+                                           wstart, wwall, wsx, wsy, acc, counts, heated,
+                                           gravity, rest)
             elif kind == SEGMENT or kind == BOX:
                 # (stalls(i, i, ...): a wall has no streak of its own; passing i again,
                 # not a literal -1, spares a second compiled copy.)
@@ -344,7 +374,23 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1
+                if rest is not None:
+                    rest.t_static[i] = t
+                    if not response.hot(kind, partner, aux, heated):
+                        if kind == BOX:
+                            resting.slide(i, aux, S, invm, acc, contact, gravity,
+                                          rest)
+                        else:
+                            resting.lift_segment(i, partner, aux, S, invm, acc, gf, wa, wb,
+                                                 gravity, rest)
+                        resting.settle(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm,
+                                       gi, gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy,
+                                       acc, counts, heated, gravity, rest)
             elif thermostat is not None and kind == KICK:
+                if rest is not None:
+                    resting.wake(i, t, i, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi,
+                                 gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy, acc,
+                                 counts, heated, gravity, rest)
                 drift(i, t, S, gravity)
                 response.redraw(i, S, invm, acc, thermostat, uniforms, gravity)
                 stamp[i] += 1

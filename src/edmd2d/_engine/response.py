@@ -23,6 +23,8 @@ internal order):
   (``tc`` = 0) makes a streak grow without end, and :func:`stalls` stops the run at
   ``STALL_COLLISIONS``; ``hold``, the ``tc`` with which box walls hold disks at rest
   under gravity (:func:`_rest`; 0 for elastic disks, which never come to rest);
+  ``soft``, the normal speed below which an impact is elastic (where disks come to
+  rest, :mod:`.resting`; 0 otherwise);
 - ``heated`` (``layout.HeatedWalls``): ``kt[k]``, the temperature ``kT`` of box wall
   ``k`` (0-3) or of segment ``k - 4``; a heated wall (``kT > 0``) sends a disk back
   with a velocity drawn afresh (:func:`_heat`) instead of reflecting it;
@@ -151,6 +153,9 @@ def _pair_impulse(i, j, t, s, dd, wi, wj, acc, contact):
     e = contact.table[species[i], species[j]]
     if t - t_last[i] < tc or t - t_last[j] < tc:
         e = 1.0  # the TC model: a disk still "in contact" collides elastically
+    soft = contact.soft
+    if s * s < soft * soft * dd:
+        e = 1.0  # a soft impact (normal speed -s / |d| below ``soft``): elastic
     acc[A_DISSIPATED] += 0.5 * (1.0 - e * e) * s * s / (dd * (wi + wj))
     return -(1.0 + e) * s / (dd * (wi + wj))
 
@@ -162,7 +167,7 @@ def _wall_factor(i, t, vn2, wi, acc, contact):
     if contact is None:
         return 2.0
     e = contact.wall
-    if t - contact.t_last[i] < contact.tc:
+    if t - contact.t_last[i] < contact.tc or vn2 < contact.soft * contact.soft:
         e = 1.0
     acc[A_DISSIPATED] += 0.5 * (1.0 - e * e) * vn2 / wi
     return 1.0 + e
@@ -359,6 +364,15 @@ def _heat(i, k, nx, ny, S, invm, acc, wacc, kind, partner, heated, uniforms):
         wacc[partner, W_HEAT] += gained
     return ((vn - vn_old) / invm[i], (S[i, VX] - vx0) / invm[i],
             (S[i, VY] - vy0) / invm[i])
+
+
+@njit
+def hot(kind, partner, aux, heated):
+    """Whether the wall of a ``kind`` BOX (side ``aux``) or SEGMENT (``partner``) event
+    is heated."""
+    if heated is None:
+        return False
+    return heated.kt[aux if kind == BOX else 4 + partner] > 0.0
 
 
 @njit(inline="always")

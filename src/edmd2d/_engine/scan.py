@@ -29,6 +29,7 @@ from .layout import (
     NONE,
     PARTNER,
     PSTAMP,
+    RESTING,
     SEGMENT,
     VX,
     VY,
@@ -183,6 +184,11 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
 
     (One function for both, compiled into the event loop at a single place.)
     """
+    if gravity is not None and gravity.support[i] & RESTING:
+        # At rest: no event of its own (flying disks hold their contacts with it).
+        tcand[i] = INF
+        E[i, KIND] = NONE
+        return INF
     partial = direction >= 0 and not (
         kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
     if gravity is None:

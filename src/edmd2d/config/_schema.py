@@ -120,6 +120,12 @@ def _vector(length=2):
     return check
 
 
+def _switch(value):
+    if isinstance(value, bool):
+        return value, None
+    return None, f"expected true or false, got {_shown(value)}"
+
+
 def _periodic(value):
     if isinstance(value, bool):
         return value, None
@@ -188,6 +194,8 @@ _KINDS = {
     "coefficient": _number(0.0, 1.0, lo_open=True),
     "duration": _number(0.0),
     "vector": _vector(),
+    "switch": _switch,
+    "length": _number(0.0, lo_open=True),
 }
 
 

@@ -1,0 +1,538 @@
+"""Disks at rest: a settled disk stops being simulated until something moves it.
+
+Under gravity, inelastic disks that settle into a bed would otherwise bounce on each
+other for ever, each bounce shorter than the last (an inelastic collapse: unboundedly
+many collisions in a finite time).  A disk is therefore *put to rest* after a collision
+when it is slow and held (:func:`settle`):
+
+- its speed is at most ``rest.speed``;
+- its supports, the static bodies it touches to within ``rest.gap`` (resting disks,
+  immovable disks at rest, wall segments and their end points, box walls; not heated
+  walls), can hold it without friction: the direction against gravity lies strictly
+  inside the cone of their normals (a support on each side of it, less than half a
+  turn apart), or one of them is a flat wall whose normal points against gravity.
+
+Its velocity is then set to 0 (the kinetic energy removed counts as dissipated), its
+flag ``RESTING`` is set in the support column (``layout.S_SUPPORT``, beside the box
+walls a disk slides on), its supports are kept (``rest.supports``, up to
+``MAX_SUPPORTS``), and it holds no event: a resting disk is not predicted, not even
+against other resting disks, so a settled bed costs nothing per unit of time.  For the
+disks in flight a resting disk is a fixed circle (their parabola against it:
+``predict.point_time``); the flying disks around one that comes to rest are predicted
+afresh at once, since a contact with it may now come sooner than their next event.
+
+A resting disk wakes (:func:`wake`):
+
+- when a flying disk hits it with a normal speed above ``rest.wake``: it then takes
+  part in that collision with its own mass.  A softer impact leaves it at rest: the
+  flying disk bounces off it as off a fixed body (:func:`collide_static`; the bed
+  takes the momentum, as a wall does);
+- when one of its supports wakes: the disks it holds wake in turn, a cascade upwards;
+- when a thermostat redraws its velocity; the Python layer wakes every disk when the
+  velocities, positions, gravity or walls are set.
+
+A woken disk starts from rest and falls, or is carried off by the collision that woke
+it.  Waking and the forced predictions use the loop's own machinery: a disk to be
+predicted afresh gets an event now whose partner stamp cannot match (:func:`mark_stale`),
+so the loop predicts it at its single prediction site.
+
+Box walls: under gravity a bounce on a box wall that gravity presses the disk into,
+with a normal speed below ``rest.speed``, leaves the disk sliding along the wall
+(``flight``: the wall holds gravity's normal component), as the TC model's ``hold``
+does; without it a disk sliding along a floor would bounce ever lower for ever.
+
+Supports are coded as disk rows (``>= 0``), box walls ``-2 - side`` and wall segments
+``-6 - k``; ``-1`` is an empty slot.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .._jit import njit
+from . import queue
+from .flight import acceleration, position_at
+from .grid import neighbour
+from .layout import (
+    A_DISSIPATED,
+    A_VIRIAL,
+    A_VIRIAL_XX,
+    A_VIRIAL_YY,
+    C_RESTS,
+    C_WAKES,
+    CELL,
+    DISK,
+    KIND,
+    PARTNER,
+    PSTAMP,
+    RESTING,
+    VX,
+    VY,
+    R,
+    T,
+    X,
+    Y,
+    pack_kind,
+    unpack_segment,
+    unpack_shift,
+)
+from .predict import _segment_frame
+from .response import _note_collision, _pair_impulse, _release, _simultaneous
+
+#: The supports kept per resting disk.
+MAX_SUPPORTS = 4
+# Support codes of the walls (disk rows are >= 0; -1 is an empty slot).
+BOX_SUPPORT = -2  # box wall ``side``: -2 - side
+SEGMENT_SUPPORT = -6  # wall segment ``k``: -6 - k
+#: The bodies within the gap examined when a disk is put to rest (a disk touches at
+#: most six others of its size, and a few walls).
+CANDIDATES = 32
+
+
+@njit
+def is_resting(i, gravity):
+    """Whether disk ``i`` is at rest."""
+    return (gravity.support[i] & RESTING) != 0
+
+
+@njit
+def mark_stale(k, t, E, tcand, stamp, qt, hv, qhead, qs, qf):
+    """Give disk ``k`` an event at ``t`` whose partner stamp cannot match, so that the
+    loop predicts it afresh then (a full prediction, at its one prediction site)."""
+    tcand[k] = t
+    E[k, KIND] = pack_kind(DISK, 0)
+    E[k, PARTNER] = k
+    E[k, PSTAMP] = stamp[k] - 1
+    queue.set_time(k, t, qt, E, hv, qhead, qs, qf)
+
+
+@njit
+def wake(j, t, skip, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, nxt,
+         wa, wb, wstart, wwall, wsx, wsy, acc, counts, heated, gravity, rest):
+    """Wake resting disk ``j`` at time ``t`` and, in cascade, every resting disk that
+    one woken disk supported and the others no longer hold (:func:`held`).  Each
+    woken disk resumes the velocity it came to rest with, leaves the box walls it slid
+    on, and is predicted afresh (:func:`mark_stale`) except ``skip`` (the
+    loop's own disk of the event, which it predicts itself)."""
+    support = gravity.support
+    sup = rest.supports
+    stack = rest.stack
+    n = 0
+    if support[j] & RESTING:
+        _wake_one(j, t, skip, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, acc, counts,
+                  gravity, rest)
+        stack[0] = j
+        n = 1
+    ncx = gi[0]
+    while n > 0:
+        n -= 1
+        d = stack[n]
+        c = E[d, CELL]
+        cy = c // ncx
+        cx = c - cy * ncx
+        for ox in range(-1, 2):
+            nxc, _ = neighbour(cx, ox, ncx, gi[2] != 0)
+            if nxc < 0:
+                continue
+            for oy in range(-1, 2):
+                nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
+                if nyc < 0:
+                    continue
+                m = head[nxc + ncx * nyc]
+                while m >= 0:
+                    if support[m] & RESTING:
+                        for s in range(MAX_SUPPORTS):
+                            if sup[m, s] == d:
+                                # Still held by the others (their supports renewed), or
+                                # woken in turn.
+                                if not held(m, t, S, E, invm, gi, gf, head, nxt, wa, wb,
+                                            wstart, wwall, wsx, wsy, heated, gravity,
+                                            rest):
+                                    _wake_one(m, t, skip, S, E, tcand, stamp, qt, hv,
+                                              qhead, qs, qf, invm, acc, counts, gravity,
+                                              rest)
+                                    stack[n] = m
+                                    n += 1
+                                break
+                    m = nxt[m]
+
+
+@njit
+def _wake_one(d, t, skip, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, acc, counts,
+              gravity, rest):
+    """Wake disk ``d``: it resumes the velocity it came to rest with, whose kinetic
+    energy leaves the dissipated tally again."""
+    gravity.support[d] = 0
+    for s in range(MAX_SUPPORTS):
+        rest.supports[d, s] = -1
+    vx = rest.frozen[d, 0]
+    vy = rest.frozen[d, 1]
+    acc[A_DISSIPATED] -= 0.5 * (vx * vx + vy * vy) / invm[d]
+    S[d, VX] = vx
+    S[d, VY] = vy
+    rest.frozen[d, 0] = 0.0
+    rest.frozen[d, 1] = 0.0
+    S[d, T] = t  # (at rest its position holds at any time)
+    stamp[d] += 1
+    counts[C_WAKES] += 1
+    if d != skip:
+        mark_stale(d, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
+
+
+@njit
+def meet(i, j, t, aux, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, nxt,
+         wa, wb, wstart, wwall, wsx, wsy, acc, counts, heated, gravity, rest):
+    """Flying disk ``i`` meets disk ``j`` (both at ``t``; ``j`` through the image shift
+    ``aux``): whether ``j`` is at rest and stays so, the impact being no faster than
+    ``rest.wake``.  A faster impact wakes ``j`` (and what it supports) first."""
+    if not is_resting(j, gravity):
+        return False
+    sx, sy = unpack_shift(aux)
+    dx = S[i, X] - (S[j, X] + sx * gf[0])
+    dy = S[i, Y] - (S[j, Y] + sy * gf[1])
+    s = S[i, VX] * dx + S[i, VY] * dy  # (j does not move)
+    # The normal speed of the impact is -s / |d|: compared squared (s < 0 to count).
+    w = rest.wake
+    if s < 0.0 and s * s > w * w * (dx * dx + dy * dy):
+        wake(j, t, j, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, nxt,
+             wa, wb, wstart, wwall, wsx, wsy, acc, counts, heated, gravity, rest)
+        return False
+    return True
+
+
+@njit
+def collide_static(i, j, t, aux, S, invm, acc, gf, contact, gravity, rest):
+    """Flying disk ``i`` bounces off resting disk ``j`` as off a fixed circle (``j``
+    keeps still: the impulse uses ``w_j = 0``), with the pair's coefficient of
+    restitution, and leaves it at the soft speed at least (:func:`lift`); or it
+    stops, if it is wedged (see below).  The virial counts it as any contact.
+    Returns whether it was wedged."""
+    sx, sy = unpack_shift(aux)
+    dx = S[i, X] - (S[j, X] + sx * gf[0])
+    dy = S[i, Y] - (S[j, Y] + sy * gf[1])
+    dd = dx * dx + dy * dy
+    s = S[i, VX] * dx + S[i, VY] * dy
+    wedged = _simultaneous(t, rest.t_static[i])
+    rest.t_static[i] = t
+    if s < 0.0:
+        wi = invm[i]
+        if wedged:
+            # Wedged: it met a static body before this one at the same instant, so it
+            # touches static bodies on two sides.  Bouncing between them would take
+            # unboundedly many collisions in no time: it stops (its kinetic energy
+            # dissipated), to come to rest there if they hold it (settle), or else to
+            # leave this body at the soft speed (lift).
+            acc[A_DISSIPATED] += 0.5 * (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]) / wi
+            k = 0.0
+            S[i, VX] = 0.0
+            S[i, VY] = 0.0
+        else:
+            k = _pair_impulse(i, j, t, s, dd, wi, 0.0, acc, contact)
+        S[i, VX] += k * wi * dx
+        S[i, VY] += k * wi * dy
+        acc[A_VIRIAL] += k * dd
+        acc[A_VIRIAL_XX] += k * dx * dx
+        acc[A_VIRIAL_YY] += k * dy * dy
+    if not wedged:
+        lift(i, dx, dy, S, invm, acc, gravity, rest)
+    _note_collision(i, t, invm, contact)
+    _release(i, S, gravity.support)
+    return wedged
+
+
+@njit
+def lift(i, nx, ny, S, invm, acc, gravity, rest):
+    """After disk ``i`` met a static body with normal ``n`` (towards the disk, not
+    normalised) that gravity presses it into: make it leave at the soft speed at
+    least.  A disk that meets a static body with no normal speed (sliding along it,
+    or starting from rest on it) would otherwise meet it again at once, for ever;
+    leaving at the soft speed, it bounces along the body elastically, at most
+    ``|g| / (2 rest.soft)`` times per unit time, until it comes to rest or leaves.
+    The kinetic energy added is taken from the dissipated tally, so the energy books
+    hold."""
+    if gravity.gx * nx + gravity.gy * ny >= 0.0:
+        return
+    nn = nx * nx + ny * ny
+    w = (S[i, VX] * nx + S[i, VY] * ny) / math.sqrt(nn)
+    if w >= rest.soft:
+        return
+    vx0 = S[i, VX]
+    vy0 = S[i, VY]
+    q = (rest.soft - w) / math.sqrt(nn)
+    S[i, VX] += q * nx
+    S[i, VY] += q * ny
+    acc[A_DISSIPATED] -= 0.5 * (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]
+                               - vx0 * vx0 - vy0 * vy0) / invm[i]
+
+
+@njit
+def slide(i, side, S, invm, acc, contact, gravity, rest):
+    """After disk ``i`` bounced off box wall ``side``: if gravity presses it into that
+    wall and it leaves with a normal speed below ``rest.speed``, it slides along the
+    wall instead (its normal velocity, counted as dissipated, removed) -- unless a
+    disk pushed it into the wall at that same instant and it bounces faster than a
+    thousandth of ``rest.soft`` (a slower bounce would come back within a rounding of
+    the clock).  That stays a bounce: removing the bounce of a disk under another
+    would leave the one above pressing on it, with no time between their contacts."""
+    axis = side >> 1
+    inward = 1.0 if side % 2 == 0 else -1.0  # the wall's normal, into the box
+    g_n = (gravity.gx if axis == 0 else gravity.gy) * inward
+    if g_n >= 0.0:
+        return
+    vn = S[i, VX + axis] * inward
+    if vn > 1e-3 * rest.soft and contact is not None and contact.streak[i] > 0:
+        return  # (pushed: its collision before this one came at the same time)
+    if vn < rest.speed:
+        acc[A_DISSIPATED] += 0.5 * vn * vn / invm[i]
+        S[i, VX + axis] = 0.0
+        gravity.support[i] |= 1 << side
+
+
+@njit
+def part(i, j, aux, S, invm, acc, gf, gravity, rest):
+    """After flying disks ``i`` and ``j`` (through the image shift ``aux``) collided:
+    if gravity presses them together (one of them slides on a box wall, so their
+    accelerations differ) and they part slower than ``rest.soft``, make them part at
+    that speed, by an impulse along their normal (momentum conserved; the kinetic
+    energy added taken from the dissipated tally, as in :func:`lift`)."""
+    wi = invm[i]
+    wj = invm[j]
+    if wi == 0.0 or wj == 0.0:
+        return
+    sx, sy = unpack_shift(aux)
+    nx = S[i, X] - (S[j, X] + sx * gf[0])
+    ny = S[i, Y] - (S[j, Y] + sy * gf[1])
+    gxi, gyi = acceleration(i, gravity)
+    gxj, gyj = acceleration(j, gravity)
+    if (gxi - gxj) * nx + (gyi - gyj) * ny >= 0.0:
+        return
+    ln = math.sqrt(nx * nx + ny * ny)
+    w = ((S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny) / ln
+    if w >= rest.soft:
+        return
+    before = (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]) / wi + (
+        S[j, VX] * S[j, VX] + S[j, VY] * S[j, VY]) / wj
+    jn = (rest.soft - w) / ((wi + wj) * ln)  # (the impulse over |n|)
+    S[i, VX] += jn * wi * nx
+    S[i, VY] += jn * wi * ny
+    S[j, VX] -= jn * wj * nx
+    S[j, VY] -= jn * wj * ny
+    after = (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]) / wi + (
+        S[j, VX] * S[j, VX] + S[j, VY] * S[j, VY]) / wj
+    acc[A_DISSIPATED] -= 0.5 * (after - before)
+    _release(i, S, gravity.support)  # (a box wall held it only while it did not leave)
+    _release(j, S, gravity.support)
+
+
+@njit
+def lift_pair(i, j, aux, S, invm, acc, gf, gravity, rest):
+    """:func:`lift` off disk ``j`` (seen through the image shift ``aux``)."""
+    sx, sy = unpack_shift(aux)
+    lift(i, S[i, X] - (S[j, X] + sx * gf[0]), S[i, Y] - (S[j, Y] + sy * gf[1]), S, invm,
+         acc, gravity, rest)
+    _release(i, S, gravity.support)
+
+
+@njit
+def lift_segment(i, partner, aux, S, invm, acc, gf, wa, wb, gravity, rest):
+    """:func:`lift` after disk ``i`` met wall segment ``partner`` (its side or an end
+    point, and its image shift, packed in ``aux``)."""
+    part, code = unpack_segment(aux)
+    sx, sy = unpack_shift(code)
+    ax = wa[partner, 0] + sx * gf[0]
+    ay = wa[partner, 1] + sy * gf[1]
+    bx = wb[partner, 0] + sx * gf[0]
+    by = wb[partner, 1] + sy * gf[1]
+    if part == 0:
+        _, _, _, nx, ny, h, _ = _segment_frame(S[i, X], S[i, Y], 0.0, 0.0, ax, ay, bx, by)
+        if h < 0.0:
+            nx = -nx
+            ny = -ny
+    else:
+        nx = S[i, X] - (ax if part == 1 else bx)
+        ny = S[i, Y] - (ay if part == 1 else by)
+    lift(i, nx, ny, S, invm, acc, gravity, rest)
+    _release(i, S, gravity.support)
+
+
+@njit
+def settle(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, nxt,
+           wa, wb, wstart, wwall, wsx, wsy, acc, counts, heated, gravity, rest):
+    """Put disk ``i`` (its state at ``t``) to rest if it is slow and held (see the module
+    notes); then predict the flying disks around it afresh.  Returns whether it was."""
+    support = gravity.support
+    if invm[i] == 0.0 or support[i] & RESTING:
+        return False
+    vx = S[i, VX]
+    vy = S[i, VY]
+    v2 = vx * vx + vy * vy
+    if v2 > rest.speed * rest.speed:
+        return False
+    if not held(i, t, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy,
+                heated, gravity, rest):
+        return False
+    acc[A_DISSIPATED] += 0.5 * v2 / invm[i]
+    rest.frozen[i, 0] = vx
+    rest.frozen[i, 1] = vy
+    S[i, VX] = 0.0
+    S[i, VY] = 0.0
+    support[i] = RESTING
+    stamp[i] += 1
+    counts[C_RESTS] += 1
+    # A flying disk near it may now meet it before its next event: predict it afresh.
+    ncx = gi[0]
+    c = E[i, CELL]
+    cy = c // ncx
+    cx = c - cy * ncx
+    for ox in range(-1, 2):
+        nxc, _ = neighbour(cx, ox, ncx, gi[2] != 0)
+        if nxc < 0:
+            continue
+        for oy in range(-1, 2):
+            nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
+            if nyc < 0:
+                continue
+            m = head[nxc + ncx * nyc]
+            while m >= 0:
+                if m != i and (support[m] & RESTING) == 0 and (
+                        invm[m] > 0.0 or S[m, VX] != 0.0 or S[m, VY] != 0.0):
+                    mark_stale(m, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
+                m = nxt[m]
+    return True
+
+
+@njit
+def held(i, t, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy, heated,
+         gravity, rest):
+    """Whether disk ``i`` (at ``t``) is held by the static bodies within ``rest.gap``
+    of it (see the module notes); if so its supports are written to
+    ``rest.supports[i]``."""
+    support = gravity.support
+    codes = rest.codes
+    angles = rest.angles
+    n = 0
+    g = math.hypot(gravity.gx, gravity.gy)
+    upx = -gravity.gx / g
+    upy = -gravity.gy / g
+    x = S[i, X]
+    y = S[i, Y]
+    r = S[i, R]
+    tol = rest.gap
+    # The best supports on each side of "up" (angles from it, counterclockwise
+    # positive), and a flat wall under the disk.
+    neg = -math.inf
+    pos = math.inf
+    neg_k = -1
+    pos_k = -1
+    flat_k = -1
+    # Box walls (normals into the box).
+    for side in range(4):
+        axis = side >> 1
+        if gi[2 + axis] != 0:
+            continue
+        if heated is not None and heated.kt[side] > 0.0:
+            continue
+        c = x if axis == 0 else y
+        gap = c - r if side % 2 == 0 else gf[axis] - r - c
+        if gap <= tol and n < CANDIDATES:
+            inward = 1.0 if side % 2 == 0 else -1.0
+            nx = inward if axis == 0 else 0.0
+            ny = 0.0 if axis == 0 else inward
+            codes[n] = BOX_SUPPORT - side
+            angles[n] = math.atan2(upx * ny - upy * nx, upx * nx + upy * ny)
+            if angles[n] == 0.0:
+                flat_k = n
+            n += 1
+    # Wall segments listed for the disk's cell: the side (flat) or an end point.
+    c = E[i, CELL]
+    k0 = 0
+    k1 = 0
+    if wa.shape[0] > 0:  # (without segments the lists are not there)
+        k0 = wstart[c]
+        k1 = wstart[c + 1]
+    for k in range(k0, k1):
+        w = wwall[k]
+        if heated is not None and heated.kt[4 + w] > 0.0:
+            continue
+        shx = wsx[k] * gf[0]
+        shy = wsy[k] * gf[1]
+        ax = wa[w, 0] + shx
+        ay = wa[w, 1] + shy
+        bx = wb[w, 0] + shx
+        by = wb[w, 1] + shy
+        ux, uy, ll, nx, ny, h, _ = _segment_frame(x, y, 0.0, 0.0, ax, ay, bx, by)
+        along = ((x - ax) * ux + (y - ay) * uy) / ll
+        flat = 0.0 <= along <= 1.0
+        if flat:
+            gap = abs(h) - r
+            if h < 0.0:
+                nx = -nx
+                ny = -ny
+        else:
+            ex = ax if along < 0.0 else bx
+            ey = ay if along < 0.0 else by
+            dist = math.hypot(x - ex, y - ey)
+            gap = dist - r
+            nx = (x - ex) / dist
+            ny = (y - ey) / dist
+        if gap <= tol and n < CANDIDATES:
+            codes[n] = SEGMENT_SUPPORT - w
+            angles[n] = math.atan2(upx * ny - upy * nx, upx * nx + upy * ny)
+            if flat and angles[n] == 0.0:
+                flat_k = n
+            n += 1
+    # Disks at rest, and immovable disks standing still, in the 3x3 neighbour cells.
+    ncx = gi[0]
+    cy = c // ncx
+    cx = c - cy * ncx
+    for ox in range(-1, 2):
+        nxc, sx = neighbour(cx, ox, ncx, gi[2] != 0)
+        if nxc < 0:
+            continue
+        for oy in range(-1, 2):
+            nyc, sy = neighbour(cy, oy, gi[1], gi[3] != 0)
+            if nyc < 0:
+                continue
+            m = head[nxc + ncx * nyc]
+            while m >= 0:
+                static = (support[m] & RESTING) != 0 or (
+                    invm[m] == 0.0 and S[m, VX] == 0.0 and S[m, VY] == 0.0)
+                if m != i and static:
+                    xm, ym = position_at(m, t, S, gravity)
+                    dx = x - (xm + sx * gf[0])
+                    dy = y - (ym + sy * gf[1])
+                    dist = math.hypot(dx, dy)
+                    if dist - (r + S[m, R]) <= tol and n < CANDIDATES:
+                        codes[n] = m
+                        angles[n] = math.atan2(upx * dy - upy * dx, upx * dx + upy * dy)
+                        n += 1
+                m = nxt[m]
+    for k in range(n):
+        a = angles[k]
+        if a < 0.0 and a > neg:
+            neg = a
+            neg_k = k
+        elif a > 0.0 and a < pos:
+            pos = a
+            pos_k = k
+    held = flat_k >= 0 or (neg_k >= 0 and pos_k >= 0 and pos - neg < math.pi)
+    if not held:
+        return False
+    # At rest: keep the supports that hold it first, then the others that fit.
+    sup = rest.supports
+    for s in range(MAX_SUPPORTS):
+        sup[i, s] = -1
+    if flat_k >= 0:
+        # A flat wall holds it alone: no other support leaving can move it.
+        sup[i, 0] = codes[flat_k]
+    else:
+        sup[i, 0] = codes[neg_k]
+        sup[i, 1] = codes[pos_k]
+        kept = 2
+        for k in range(n):
+            if kept >= MAX_SUPPORTS:
+                break
+            if k != neg_k and k != pos_k:
+                sup[i, kept] = codes[k]
+                kept += 1
+    return True

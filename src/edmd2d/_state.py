@@ -514,7 +514,7 @@ class EngineState:
                             frozen, t_static,
                             np.empty(len(self.S), np.int32),
                             np.empty(_resting.CANDIDATES, np.int64),
-                            np.empty(_resting.CANDIDATES))
+                            np.empty(_resting.CANDIDATES), np.empty(9, np.int64))
 
     def wake_all(self) -> None:
         """Wake every disk at rest (before its velocity, its position or the forces on

@@ -463,6 +463,8 @@ class Rest(NamedTuple):
     codes: np.ndarray
     #: float64, shape (``resting.CANDIDATES``,): their normals' angles from "up".
     angles: np.ndarray
+    #: int64, shape (9,): room for a 3x3 block of cells.
+    cells: np.ndarray
 
 
 class ModelFamilies(NamedTuple):

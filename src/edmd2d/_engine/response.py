@@ -307,16 +307,31 @@ def _rest(i, side, S, invm, acc, contact, gravity):
     with ``tc > 0`` (``hold``)."""
     if contact is None or gravity is None:
         return
-    axis = side >> 1
-    inward = 1.0 if side % 2 == 0 else -1.0  # the wall's normal, into the box
-    g_n = (gravity.gx if axis == 0 else gravity.gy) * inward
+    axis, g_n, vn = _wall_normals(i, side, S, gravity)
     if g_n >= 0.0:
         return
-    vn = S[i, VX + axis] * inward
     if 2.0 * vn < -g_n * contact.hold:
-        acc[A_DISSIPATED] += 0.5 * vn * vn / invm[i]
-        S[i, VX + axis] = 0.0
-        gravity.support[i] |= 1 << side
+        _hold_on_wall(i, side, axis, vn, S, invm, acc, gravity)
+
+
+@njit
+def _wall_normals(i, side, S, gravity):
+    """For disk ``i`` at box wall ``side``: the wall's axis, and gravity's and the
+    disk's velocity's components along the wall's normal into the box."""
+    axis = side >> 1
+    inward = 1.0 if side % 2 == 0 else -1.0  # the wall's normal, into the box
+    return (axis, (gravity.gx if axis == 0 else gravity.gy) * inward,
+            S[i, VX + axis] * inward)
+
+
+@njit
+def _hold_on_wall(i, side, axis, vn, S, invm, acc, gravity):
+    """Disk ``i`` slides along box wall ``side`` from now on: its normal velocity
+    ``vn`` is removed (its kinetic energy counted as dissipated), and the wall holds
+    gravity's normal component (see :mod:`.flight`)."""
+    acc[A_DISSIPATED] += 0.5 * vn * vn / invm[i]
+    S[i, VX + axis] = 0.0
+    gravity.support[i] |= 1 << side
 
 
 @njit

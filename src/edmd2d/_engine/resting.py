@@ -77,7 +77,14 @@ from .layout import (
     unpack_shift,
 )
 from .predict import _segment_frame
-from .response import _note_collision, _pair_impulse, _release, _simultaneous
+from .response import (
+    _hold_on_wall,
+    _note_collision,
+    _pair_impulse,
+    _release,
+    _simultaneous,
+    _wall_normals,
+)
 
 #: The supports kept per resting disk.
 MAX_SUPPORTS = 4
@@ -107,6 +114,26 @@ def mark_stale(k, t, E, tcand, stamp, qt, hv, qhead, qs, qf):
 
 
 @njit
+def _near_cells(c, gi, cells):
+    """The cells of the 3x3 block around cell ``c`` (those that exist: a walled axis
+    ends), written to ``cells``; returns how many."""
+    ncx = gi[0]
+    cy = c // ncx
+    cx = c - cy * ncx
+    n = 0
+    for ox in range(-1, 2):
+        nxc, _ = neighbour(cx, ox, ncx, gi[2] != 0)
+        if nxc < 0:
+            continue
+        for oy in range(-1, 2):
+            nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
+            if nyc >= 0:
+                cells[n] = nxc + ncx * nyc
+                n += 1
+    return n
+
+
+@njit
 def wake(j, t, skip, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, nxt,
          wa, wb, wstart, wwall, wsx, wsy, acc, counts, heated, gravity, rest):
     """Wake resting disk ``j`` at time ``t`` and, in cascade, every resting disk that
@@ -123,38 +150,26 @@ def wake(j, t, skip, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, he
                   gravity, rest)
         stack[0] = j
         n = 1
-    ncx = gi[0]
+    cells = rest.cells
     while n > 0:
         n -= 1
         d = stack[n]
-        c = E[d, CELL]
-        cy = c // ncx
-        cx = c - cy * ncx
-        for ox in range(-1, 2):
-            nxc, _ = neighbour(cx, ox, ncx, gi[2] != 0)
-            if nxc < 0:
-                continue
-            for oy in range(-1, 2):
-                nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
-                if nyc < 0:
-                    continue
-                m = head[nxc + ncx * nyc]
-                while m >= 0:
-                    if support[m] & RESTING:
-                        for s in range(MAX_SUPPORTS):
-                            if sup[m, s] == d:
-                                # Still held by the others (their supports renewed), or
-                                # woken in turn.
-                                if not held(m, t, S, E, invm, gi, gf, head, nxt, wa, wb,
-                                            wstart, wwall, wsx, wsy, heated, gravity,
-                                            rest):
-                                    _wake_one(m, t, skip, S, E, tcand, stamp, qt, hv,
-                                              qhead, qs, qf, invm, acc, counts, gravity,
-                                              rest)
-                                    stack[n] = m
-                                    n += 1
-                                break
-                    m = nxt[m]
+        for k in range(_near_cells(E[d, CELL], gi, cells)):
+            m = head[cells[k]]
+            while m >= 0:
+                if support[m] & RESTING:
+                    for s in range(MAX_SUPPORTS):
+                        if sup[m, s] == d:
+                            # Still held by the others (their supports renewed), or
+                            # woken in turn.
+                            if not held(m, t, S, E, invm, gi, gf, head, nxt, wa, wb,
+                                        wstart, wwall, wsx, wsy, heated, gravity, rest):
+                                _wake_one(m, t, skip, S, E, tcand, stamp, qt, hv, qhead,
+                                          qs, qf, invm, acc, counts, gravity, rest)
+                                stack[n] = m
+                                n += 1
+                            break
+                m = nxt[m]
 
 
 @njit
@@ -274,18 +289,13 @@ def slide(i, side, S, invm, acc, contact, gravity, rest):
     thousandth of ``rest.soft`` (a slower bounce would come back within a rounding of
     the clock).  That stays a bounce: removing the bounce of a disk under another
     would leave the one above pressing on it, with no time between their contacts."""
-    axis = side >> 1
-    inward = 1.0 if side % 2 == 0 else -1.0  # the wall's normal, into the box
-    g_n = (gravity.gx if axis == 0 else gravity.gy) * inward
+    axis, g_n, vn = _wall_normals(i, side, S, gravity)
     if g_n >= 0.0:
         return
-    vn = S[i, VX + axis] * inward
     if vn > 1e-3 * rest.soft and contact is not None and contact.streak[i] > 0:
         return  # (pushed: its collision before this one came at the same time)
     if vn < rest.speed:
-        acc[A_DISSIPATED] += 0.5 * vn * vn / invm[i]
-        S[i, VX + axis] = 0.0
-        gravity.support[i] |= 1 << side
+        _hold_on_wall(i, side, axis, vn, S, invm, acc, gravity)
 
 
 @njit
@@ -380,24 +390,14 @@ def settle(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, 
     stamp[i] += 1
     counts[C_RESTS] += 1
     # A flying disk near it may now meet it before its next event: predict it afresh.
-    ncx = gi[0]
-    c = E[i, CELL]
-    cy = c // ncx
-    cx = c - cy * ncx
-    for ox in range(-1, 2):
-        nxc, _ = neighbour(cx, ox, ncx, gi[2] != 0)
-        if nxc < 0:
-            continue
-        for oy in range(-1, 2):
-            nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
-            if nyc < 0:
-                continue
-            m = head[nxc + ncx * nyc]
-            while m >= 0:
-                if m != i and (support[m] & RESTING) == 0 and (
-                        invm[m] > 0.0 or S[m, VX] != 0.0 or S[m, VY] != 0.0):
-                    mark_stale(m, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
-                m = nxt[m]
+    cells = rest.cells
+    for k in range(_near_cells(E[i, CELL], gi, cells)):
+        m = head[cells[k]]
+        while m >= 0:
+            if m != i and (support[m] & RESTING) == 0 and (
+                    invm[m] > 0.0 or S[m, VX] != 0.0 or S[m, VY] != 0.0):
+                mark_stale(m, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
+            m = nxt[m]
     return True
 
 

@@ -94,7 +94,7 @@ class System:
         The acceleration of gravity (``None``: none), for the families checked after
         the built-in ones (the registered families).
     inelastic : bool
-        Whether some coefficient of restitution is below 1 (as :attr:`gravity`).
+        Whether some coefficient of restitution is below 1 (as ``gravity``).
     """
 
     box: Box
@@ -674,17 +674,17 @@ def unregister(name: str) -> None:
 class Resting(Family):
     """Disks that come to rest under gravity: a settled bed stops being simulated.
 
-    After each collision a disk whose speed is at most :attr:`speed` is put to rest if
-    it is held: its supports, the static bodies within :attr:`gap` of it (disks at
+    After each collision a disk whose speed is at most ``speed`` is put to rest if
+    it is held: its supports, the static bodies within ``gap`` of it (disks at
     rest, immovable disks, wall segments and their end points, box walls; not heated
     walls), can hold it without friction (the direction against gravity lies strictly
     inside the cone of their normals, or one of them is a flat wall whose normal points
     against gravity).  Its kinetic energy then counts as dissipated, and it holds no
     event until it wakes: when a flying disk hits it with a normal speed above
-    :attr:`wake`, when a support of its wakes (a cascade upwards), when the thermostat
+    ``wake``, when a support of its wakes (a cascade upwards), when the thermostat
     redraws its velocity, or when the velocities, positions, gravity or walls are set.
     A softer impact bounces off it as off a fixed body.  A bounce on a box wall that
-    gravity presses a disk into, slower than :attr:`speed`, leaves it sliding along
+    gravity presses a disk into, slower than ``speed``, leaves it sliding along
     the wall.
 
     On by default under gravity with an inelastic model (a coefficient of restitution

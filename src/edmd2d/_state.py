@@ -14,7 +14,7 @@ import time as _time
 
 import numpy as np
 
-from . import _checks
+from . import _balance, _checks
 from . import models as _models
 from . import progress as _progress
 from ._checks import OVERLAP_TOL
@@ -176,6 +176,7 @@ class EngineState:
                               if "resting" in families else None)
         self.rest_frozen = np.zeros((n, 2)) if "resting" in families else None
         self.rest_t_static = np.full(n, -np.inf) if "resting" in families else None
+        self.rest_check = self.first_rest_check()
         self.counts = np.zeros(_layout.N_COUNTS, np.int64)
         self.acc = np.zeros(_layout.N_ACC, np.float64)
         self.set_log(0)
@@ -241,6 +242,8 @@ class EngineState:
             state["counts"] = np.concatenate(
                 [counts, np.zeros(_layout.N_COUNTS - len(counts), np.int64)])
         vars(self).update(state)
+        if "rest_check" not in state:  # (saved before groups of disks could rest)
+            self.rest_check = self.first_rest_check()
 
     # ------------------------------------------------------------------ grid
     def build_grid(self, pos: np.ndarray, dmax: float, cell_size: float | None) -> None:
@@ -516,6 +519,44 @@ class EngineState:
                             np.empty(_resting.CANDIDATES, np.int64),
                             np.empty(_resting.CANDIDATES), np.empty(9, np.int64))
 
+    def first_rest_check(self, after: float | None = None) -> float | None:
+        """The first time after ``after`` (default :attr:`time`) at which groups of
+        disks that hold one another up are looked for: the multiples of
+        ``Resting.every`` (``None`` without resting)."""
+        rest = self.families.get("resting")
+        if rest is None:
+            return None
+        t = self.time if after is None else after
+        check = rest.every * (math.floor(t / rest.every) + 1.0)
+        return check if check > t else check + rest.every  # (whatever the rounding)
+
+    def rest_groups(self) -> int:
+        """Put to rest, at :attr:`time`, the groups of slow flying disks that hold one
+        another up (``_balance.py``); returns how many disks came to rest."""
+        rest = self.families["resting"]
+        families = _NO_MODEL if self.model is None else self.model.engine_families()
+        cold = np.ones(4 + len(self.wa), bool)
+        if families.heated is not None:
+            cold = families.heated.kt <= 0.0
+        vel = self.velocities()
+        support = _layout.support_view(self.S)
+        static = (support & _layout.RESTING != 0) | (
+            (self.invm == 0.0) & (vel == 0.0).all(axis=1))
+        rows, supports = _balance.held_groups(
+            self.positions(), vel, self.S[:, _layout.R], self.mass, static,
+            self.invm > 0.0, self.box, list(zip(self.wa, self.wb)), cold[:4], cold[4:],
+            self.gravity, rest.speed, rest.gap, _balance.TOL)
+        if len(rows) == 0:
+            return 0
+        bundle = self.rest_bundle()
+        bundle.supports[rows] = supports
+        bundle.stack[:len(rows)] = rows
+        _resting.rest_group(self.time, len(rows), self.S, self.E, self.tcand, self.stamp,
+                            self.qt, self.hv, self.qhead, self.qs, self.qf, self.invm,
+                            self.gi, self.head, self.nxt, self.acc, self.counts,
+                            self.gravity_bundle(), bundle)
+        return len(rows)
+
     def wake_all(self) -> None:
         """Wake every disk at rest (before its velocity, its position or the forces on
         it are set): each resumes the velocity it came to rest with (see
@@ -677,9 +718,11 @@ class EngineState:
             events_before = self.events()
             shown = self.time
             budget = min(chunk, self.reorder_every - self.since_reorder)
-            t_run = t_end  # (under growth: no later than the grid holds)
-            if self.growth is not None:
-                t_run = min(t_end, self.time_of_diameter(self.grid_dmax))
+            # (Under growth: no later than the grid holds; with resting disks: no later
+            # than the next search for groups that hold one another up.)
+            t_grid = math.inf if self.growth is None else self.time_of_diameter(self.grid_dmax)
+            t_check = math.inf if self.rest_check is None else self.rest_check
+            t_run = min(t_end, t_grid, t_check)
             try:
                 status = self.run(t_run, remaining, budget, out, info, _layout.RUN_EVENTS)
             finally:
@@ -720,7 +763,23 @@ class EngineState:
             if status == _layout.LOG_FULL:
                 self.drain()
                 continue
-            if t_run < t_end and status in (_layout.REACHED_TIME, _layout.NO_EVENTS):
+            reached = status in (_layout.REACHED_TIME, _layout.NO_EVENTS)
+            if reached and t_run == t_check:
+                self.time = t_run
+                out[0] = t_run
+                rested = self.rest_groups()
+                if status == _layout.NO_EVENTS and rested == 0:
+                    # Nothing moves until something is changed from outside: no
+                    # search can find anything before then.
+                    if t_end == math.inf:
+                        self.rest_check = t_check + self.families["resting"].every
+                        return status, info, remaining
+                    self.rest_check = self.first_rest_check(t_end)
+                else:
+                    self.rest_check = t_check + self.families["resting"].every
+                if t_run < t_end:
+                    continue
+            if reached and t_run < t_end and t_run == t_grid:
                 # The disks have grown as large as the grid's cells allow: rebuild it.
                 self.time = t_run
                 out[0] = t_run

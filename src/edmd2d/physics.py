@@ -687,6 +687,16 @@ class Resting(Family):
     gravity presses a disk into, slower than ``speed``, leaves it sliding along
     the wall.
 
+    Disks can also hold one another up (an arch: two disks side by side, each leaning
+    on a peg outside it), which the test of each disk's static supports cannot see.
+    Every ``every`` time units (at its multiples) the slow flying disks are therefore
+    examined as groups: the disks no faster than ``speed`` that touch to within
+    ``gap`` (each other or static bodies) come to rest together when they are held:
+    non-negative contact forces along their contact normals balance every member's
+    weight, to within a millionth of it, and the contacts that can carry force pin
+    every member (a group that can move without opening a loaded contact, such as an
+    arch of two frictionless disks, is an unstable balance).
+
     On by default under gravity with an inelastic model (a coefficient of restitution
     below 1): the bounces of a disk settling on others would otherwise shrink without
     end (an inelastic collapse).  Elastic disks never come to rest.
@@ -707,6 +717,10 @@ class Resting(Family):
         coefficient of restitution of real grains tends to 1 at small impact speeds);
         without it a disk riding on one that slides along the floor would bounce ever
         lower, without end.
+    every : float
+        ``200 h / speed = 141 sqrt(h / |g|)`` (4.5 ``sqrt(d / |g|)`` at the default
+        ``h``, ``d`` the smallest diameter): the interval of the search for groups that
+        hold one another up, a few times the time a disk takes to fall its diameter.
     """
 
     name: ClassVar[str] = "resting"
@@ -776,6 +790,11 @@ class Resting(Family):
             return None
         v = float(np.sqrt(2.0 * np.hypot(*system.gravity) * h))
         return cls(h, v, h, v, 0.1 * v)
+
+    @property
+    def every(self) -> float:
+        """The interval of the search for groups of disks that hold one another up."""
+        return 200.0 * self.height / self.speed
 
     def log(self) -> dict:
         """The criteria's length, as ``rest_height``.

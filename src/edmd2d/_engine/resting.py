@@ -12,6 +12,10 @@ when it is slow and held (:func:`settle`):
   inside the cone of their normals (a support on each side of it, less than half a
   turn apart), or one of them is a flat wall whose normal points against gravity.
 
+Disks that hold one another up (an arch, a cluster in a bed) are found as groups by
+the Python layer, every ``Resting.every`` time units (``_balance.py``), and put to rest
+together (:func:`rest_group`).
+
 Its velocity is then set to 0 (the kinetic energy removed counts as dissipated), its
 flag ``RESTING`` is set in the support column (``layout.S_SUPPORT``, beside the box
 walls a disk slides on), its supports are kept (``rest.supports``, up to
@@ -51,7 +55,7 @@ import math
 
 from .._jit import njit
 from . import queue
-from .flight import acceleration, position_at
+from .flight import acceleration, drift, position_at
 from .grid import neighbour
 from .layout import (
     A_DISSIPATED,
@@ -381,7 +385,36 @@ def settle(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, 
     if not held(i, t, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy,
                 heated, gravity, rest):
         return False
-    acc[A_DISSIPATED] += 0.5 * v2 / invm[i]
+    _put_to_rest(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head, nxt, acc,
+                 counts, gravity, rest)
+    return True
+
+
+@njit
+def rest_group(t, n, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head, nxt, acc,
+               counts, gravity, rest):
+    """Put the ``n`` flying disks ``rest.stack[:n]`` to rest at ``t`` (no earlier than
+    their local times, no later than their next events), their supports already in
+    ``rest.supports``: a group that holds itself, found by the Python layer
+    (``_balance.py``).  Each is moved to ``t`` and gets an event then whose partner
+    stamp cannot match, at which the loop finds it at rest and schedules nothing."""
+    for k in range(n):
+        i = rest.stack[k]
+        drift(i, t, S, gravity)
+        _put_to_rest(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head, nxt,
+                     acc, counts, gravity, rest)
+        mark_stale(i, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
+
+
+@njit
+def _put_to_rest(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head, nxt, acc,
+                 counts, gravity, rest):
+    """Put disk ``i`` (its state at ``t``) to rest, its supports already written, and
+    predict the flying disks around it afresh."""
+    support = gravity.support
+    vx = S[i, VX]
+    vy = S[i, VY]
+    acc[A_DISSIPATED] += 0.5 * (vx * vx + vy * vy) / invm[i]
     rest.frozen[i, 0] = vx
     rest.frozen[i, 1] = vy
     S[i, VX] = 0.0
@@ -398,7 +431,6 @@ def settle(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, 
                     invm[m] > 0.0 or S[m, VX] != 0.0 or S[m, VY] != 0.0):
                 mark_stale(m, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
             m = nxt[m]
-    return True
 
 
 @njit

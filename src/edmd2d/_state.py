@@ -764,7 +764,7 @@ class EngineState:
                 self.drain()
                 continue
             reached = status in (_layout.REACHED_TIME, _layout.NO_EVENTS)
-            if reached and t_run == t_check:
+            if reached and self.rest_check is not None and t_run == t_check:
                 self.time = t_run
                 out[0] = t_run
                 rested = self.rest_groups()

@@ -10,7 +10,7 @@ import pytest
 
 import edmd2d as ed
 from conftest import min_image, seed_of, segment_distance
-from edmd2d import contacts
+from edmd2d import _gaps, contacts
 from edmd2d.compress import DEFAULT_MAX_PRESSURE
 
 SQRT3 = math.sqrt(3.0)
@@ -115,7 +115,7 @@ def test_image_search_agrees_with_the_minimum_image():
     from scipy import spatial
 
     fast = spatial.cKDTree(pos, boxsize=box.size).query_pairs(cut, output_type="ndarray")
-    slow, vec = contacts._image_pairs(pos, box, cut)
+    slow, vec = _gaps._image_pairs(pos, box, cut)
     assert {tuple(p) for p in fast.tolist()} == {tuple(p) for p in slow.tolist()}
     d = min_image(pos[slow[:, 1]] - pos[slow[:, 0]], box)
     np.testing.assert_allclose(vec, d, rtol=1e-12, atol=1e-12)

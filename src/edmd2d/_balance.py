@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._gaps import _candidates
 from .geometry import Box
 
 #: The residual force allowed on a member of a group held, relative to its weight: far
@@ -88,8 +89,6 @@ def held_groups(pos, vel, rad, mass, static, movable, box: Box, ends, cold_sides
     """
     from scipy import sparse
     from scipy.sparse import csgraph
-
-    from .contacts import _candidates
 
     n = len(pos)
     slow = ~static & movable & ((vel * vel).sum(axis=1) <= speed * speed)

@@ -16,6 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _operations
+from ._gaps import _boxsize, _min_image
 from ._sums import dot
 from ._validate import as_count, as_float_array, as_positive_float
 from .geometry import Box
@@ -69,23 +70,6 @@ def _wrap(pos: np.ndarray, box: Box) -> np.ndarray:
                 f"positions lie outside the walled {'xy'[axis]} axis [0, {length}] of the box"
             )
     return out
-
-
-def _boxsize(box: Box, reach: float):
-    """``boxsize`` for scipy's cKDTree: the box on periodic axes; on a walled axis a
-    period longer than the box by more than ``reach``, so that no pair closer than
-    ``reach`` is ever found through it (positions there lie in [0, L])."""
-    if not any(box.periodic):
-        return None
-    return np.array([length if p else length + reach + 1.0
-                     for length, p in zip((box.width, box.height), box.periodic)])
-
-
-def _min_image(d: np.ndarray, box: Box) -> np.ndarray:
-    for axis, length in enumerate((box.width, box.height)):
-        if box.periodic[axis]:
-            d[..., axis] -= length * np.round(d[..., axis] / length)
-    return d
 
 
 # --------------------------------------------------------------------------- g(r)

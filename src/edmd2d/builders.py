@@ -21,6 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import _placement
+from ._gaps import _segment_distance
 from ._sums import weighted_sum
 from ._validate import (
     as_count,
@@ -30,7 +31,6 @@ from ._validate import (
     per_disk,
     refusal,
 )
-from .contacts import _segment_distance
 from .geometry import Box, Wall, as_walls
 from .simulation import Simulation
 

@@ -205,3 +205,19 @@ class Measurement:
 
 # Touched segment sides listed one per line by Measurement.summary.
 _SUMMARY_SIDES = 8
+
+
+def _stderr(values: np.ndarray):
+    """Standard error of the mean of independent block values (nan for fewer than 2):
+    along the first axis, a float for 1-D ``values``, else an array."""
+    values = np.asarray(values, dtype=float)
+    if len(values) < 2:
+        return math.nan if values.ndim == 1 else np.full(values.shape[1:], math.nan)
+    err = np.std(values, axis=0, ddof=1) / math.sqrt(len(values))
+    return float(err) if values.ndim == 1 else err
+
+
+def _frozen(values: np.ndarray) -> np.ndarray:
+    out = np.array(values)
+    out.flags.writeable = False
+    return out

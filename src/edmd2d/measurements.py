@@ -1,4 +1,5 @@
-"""Thermodynamic and kinetic measurements over a time window: :func:`measure`.
+"""Thermodynamic and kinetic measurements over a time window: :func:`measure`, and
+profiles along an axis: :func:`profiles`.
 
 Everything here is a true two-dimensional quantity with ``k_B = 1``.  The pressure comes
 from the collision virial, which the engine accumulates exactly at every disk-disk
@@ -18,8 +19,9 @@ from numpy.typing import ArrayLike
 from . import progress as _progress
 from ._facade import require_simulation
 from ._jsonable import decode, encode
-from ._measurement import Measurement
+from ._measurement import Measurement, _frozen, _stderr
 from ._operations import Blocks, Operation, Trigger, run
+from ._profiles import Profile, Profiles, profiles
 from ._sums import dot, weighted_sum
 from ._validate import as_count, as_positive_float
 from .geometry import Box, Wall, container
@@ -28,7 +30,8 @@ if TYPE_CHECKING:  # (for the annotations only: simulation imports this module)
     from .simulation import Simulation
 
 __all__ = ["Measurement", "measure", "Measure", "kinetic_temperature",
-           "degrees_of_freedom", "container_area", "Cooling", "cooling"]
+           "degrees_of_freedom", "container_area", "Cooling", "cooling", "profiles",
+           "Profile", "Profiles"]
 
 
 def degrees_of_freedom(sim: Simulation) -> tuple[int, tuple[bool, bool]]:
@@ -591,22 +594,6 @@ def _axis_temperatures(sim, movable: np.ndarray) -> np.ndarray:
 def _mean_speed(sim, movable: np.ndarray) -> float:
     v = sim.velocities[movable]
     return float(np.mean(np.hypot(v[:, 0], v[:, 1]))) if len(v) else math.nan
-
-
-def _stderr(values: np.ndarray):
-    """Standard error of the mean of independent block values (nan for fewer than 2):
-    along the first axis, a float for 1-D ``values``, else an array."""
-    values = np.asarray(values, dtype=float)
-    if len(values) < 2:
-        return math.nan if values.ndim == 1 else np.full(values.shape[1:], math.nan)
-    err = np.std(values, axis=0, ddof=1) / math.sqrt(len(values))
-    return float(err) if values.ndim == 1 else err
-
-
-def _frozen(values: np.ndarray) -> np.ndarray:
-    out = np.array(values)
-    out.flags.writeable = False
-    return out
 
 
 # --------------------------------------------------------------------------- containers

@@ -17,6 +17,9 @@ Operations here:
 - :class:`Measure`: pressure, temperature, collision rates and wall forces over the run,
   in blocks, as a :class:`~edmd2d.measurements.Measurement`
   (:func:`edmd2d.measurements.measure` is one run with one of them);
+- :class:`Profile`: density, packing fraction, flow velocity and granular temperature
+  in slabs along an axis, sampled at each firing
+  (:func:`edmd2d.measurements.profiles` is one run with one of them);
 - :class:`RecordTrajectory`: positions (and velocities) at each firing
   (:func:`edmd2d.analysis.trajectory` is one run with one of them);
 - :class:`RecordFrames`: a :class:`Snapshot` of everything a picture shows at each
@@ -63,10 +66,10 @@ from ._operations import (
 )
 from .checkpoint import Checkpoint
 from .io.gsd import WriteGSD
-from .measurements import Measure
+from .measurements import Measure, Profile
 
 __all__ = ["Trigger", "Every", "At", "Blocks", "Operation", "Callback", "Measure",
-           "RecordTrajectory", "RecordFrames", "Snapshot", "WriteGSD", "Checkpoint",
+           "Profile", "RecordTrajectory", "RecordFrames", "Snapshot", "WriteGSD", "Checkpoint",
            "run", "WALL_CLOCK_SLICE"]
 
 #: Collisions at most between two stops while a wall-clock trigger is active, so that

@@ -238,3 +238,20 @@ def test_describe_and_copy_until(tmp_path):
     with pytest.raises(ValueError, match="not written by edmd2d"):
         gsd.copy_until(tmp_path / "other.gsd", tmp_path / "out.gsd", 1.0)
     assert not (tmp_path / "out.gsd").exists()
+
+
+def test_frames_say_which_disks_are_at_rest(tmp_path):
+    sim = ed.make_gas(60, 0.15, periodic=False, aspect=0.5, seed=4, restitution=0.9,
+                      wall_restitution=0.9, gravity=(0.0, -1.0))
+    path = tmp_path / "bed.gsd"
+    gsd.record(sim, path, [1.0, 20.0, 100.0])
+    with hoomd.open(str(path), "r") as traj:
+        flags = [np.asarray(f.log["particles/edmd2d/resting"]) for f in traj]
+    assert flags[0].dtype == np.uint8 and flags[0].shape == (60,)
+    assert flags[0].sum() == 0  # falling
+    assert 0 < flags[1].sum() < 60  # settling
+    assert flags[2].tolist() == sim.resting.astype(int).tolist() == [1] * 60
+    # Without resting there is nothing to say.
+    gsd.record(mixed_channel(), tmp_path / "gas.gsd", [1.0])
+    with hoomd.open(str(tmp_path / "gas.gsd"), "r") as traj:
+        assert "particles/edmd2d/resting" not in traj[0].log

@@ -29,6 +29,10 @@ What a frame holds (HOOMD conventions):
   ``pressure`` (virial: ``P A = N kT + sum J |r_ij| / 2t``, with ``kT`` averaged over
   the frames written) and the ``wall_pressure`` on each box wall (x=0, x=W, y=0,
   y=H: its impulse per unit length and time, exact).
+- ``log/particles/edmd2d/resting``: where disks come to rest (the family
+  :class:`edmd2d.physics.Resting`), 1 for each disk at rest and 0 for each in flight
+  (a per-particle quantity, which OVITO shows as a particle property).  :func:`read`
+  starts every disk in flight: the disks at rest in a frame come to rest again.
 
 **Precision.** GSD stores positions, velocities and diameters in float32: about 7
 significant digits.  In a dense system two touching disks' centres are then known to
@@ -199,6 +203,8 @@ def _frame(sim, writer: Writer):
     for name, family in sim.families.items():
         for key, value in family.log().items():
             frame.log[f"edmd2d/{name}/{key}"] = np.asarray(value, np.float64)
+    if "resting" in sim.families:  # (a per-particle quantity, as HOOMD logs them)
+        frame.log["particles/edmd2d/resting"] = sim.resting.astype(np.uint8)
     return frame
 
 

@@ -1,5 +1,5 @@
 """Groups of slow disks that hold one another up (edmd2d._balance): balanced by
-non-negative contact forces, and rigid."""
+non-negative contact forces, and stable."""
 
 import numpy as np
 import pytest
@@ -41,12 +41,29 @@ def test_a_crystal_between_walls_is_held_as_one_group(cols, rows):
     assert np.isin(supports[np.searchsorted(held, bottom)], [-2 - 2]).any(axis=1).all()
 
 
-def test_a_crystal_clear_of_the_side_walls_slides_and_is_not_held():
-    # (Without friction the whole crystal can slide along the floor: not rigid.)
+def test_a_crystal_free_to_slide_along_the_floor_is_held_and_a_loose_pair_is_not():
+    # Without friction the whole crystal can slide along the floor, but that lowers
+    # nothing (a neutral motion): it is held, as a disk on a floor is.
+    pos = np.array([[0.5 * (r % 2) + c + 0.25, 0.5 + r * np.sqrt(3.0) / 2.0]
+                    for r in range(5) for c in range(6)])
+    held, _ = groups(pos, Box(6.0, 8.0, periodic=(True, False)))
+    assert len(held) == len(pos)
+    # (The same crystal between walls a little too far apart: its edge disks, each on
+    # one disk below, fall off.)
     pos, box = crystal(6, 5, 6.01)
-    pos[:, 0] += 0.005
-    held, _ = groups(pos, box)
+    held, _ = groups(pos + [0.005, 0.0], box)
     assert len(held) == 0
+    # Two disks side by side leaning on two pegs balance, but swing down together.
+    pegs = [[1.9, 3.0], [4.1, 3.0]]
+    pair = [[2.5, 3.8], [3.5, 3.8]]
+    static = np.array([False, False, True, True])
+    held, _ = groups(pair + pegs, Box(6, 20, periodic=False), static=static)
+    assert len(held) == 0
+    # Pinned by two more pegs above and outside them, they are held.
+    pins = [[1.9, 4.6], [4.1, 4.6]]
+    static = np.array([False, False, True, True, True, True])
+    held, _ = groups(pair + pegs + pins, Box(6, 20, periodic=False), static=static)
+    assert sorted(held.tolist()) == [0, 1]
 
 
 def test_the_disks_of_a_crystal_too_fast_or_on_a_slope_are_not_held():

@@ -14,15 +14,20 @@ A group is held (:func:`_held`) when it is
 
 - balanced: non-negative forces ``f`` along the contact normals balance every member's
   weight, ``A f = -m g``, to within ``tol`` of it; and
-- rigid: the contacts that can carry force pin every member.  For a motion ``u`` of
-  the group, gravity's work is ``m g . u = -f . (A^T u)``: a motion that opens a loaded
-  contact lifts the group, while one that keeps every loaded contact closed costs
-  nothing to first order, and may lower it (two frictionless disks side by side, each
-  leaning on a peg outside it, balance, but swing down together: an unstable arch).
+- stable: no motion lowers it.  For a motion ``u`` of the group, gravity's work is
+  ``m g . u = -f . (A^T u)``: a motion that opens a loaded contact lifts the group.  A
+  motion that keeps every loaded contact closed (a floppy mode) lowers it at second
+  order by ``sum f |du_t|^2 / (2 l)`` over the loaded curved contacts (``du_t`` the
+  relative motion across a contact, ``l`` its radius of curvature), unless it moves no
+  curved contact sideways: two frictionless disks side by side, each leaning on a peg
+  outside it, balance, but swing down together (an unstable arch), while a crystal
+  sliding along a frictionless floor lowers nothing (a neutral motion, allowed as a
+  disk on a flat floor is held).
 
 Both come from one linear program, the balance that loads the most contacts
 (``scipy.optimize.linprog``, HiGHS), and the singular values of the loaded contacts'
-normals.  The supports kept for each member are its contacts with the largest forces.
+normals (the floppy modes) and their tangents.  The supports kept for each member are
+its contacts with the largest forces.
 
 The balance is exact to rounding when it exists: in the clusters of the poured
 300-disk bed (four seeds, 25 to 44 disks each, 59 to 102 contacts) the largest
@@ -41,13 +46,15 @@ from .geometry import Box
 #: above the rounding of the balance (1e-14) and far below any slope a disk would slide
 #: down in the time it is examined.
 TOL = 1e-6
-#: The largest group whose rigidity is decided (by the singular values of its loaded
+#: The largest group whose stability is decided (by the singular values of its loaded
 #: contacts' normals: a dense problem); a larger one stays in flight.
 RIGID_LIMIT = 1000
-#: The smallest singular value of a pinned group's contact normals, relative to the
-#: largest: a motion that keeps every loaded contact closed has a singular value of
-#: rounding size, 1e-15.
+#: The singular value, relative to the largest, below which a motion keeps every loaded
+#: contact closed (a floppy mode: of rounding size, 1e-15).
 RIGID_TOL = 1e-9
+#: The largest sideways motion of a curved contact in a floppy mode (of unit norm) that
+#: counts as none: such a mode is neutral.
+NEUTRAL_TOL = 1e-7
 # Support codes, as in _engine/resting.py.
 _BOX_SUPPORT = -2
 _SEGMENT_SUPPORT = -6
@@ -119,8 +126,14 @@ def held_groups(pos, vel, rad, mass, static, movable, box: Box, ends, cold_sides
     a = np.concatenate([pa, bd[bk], sd[sk]])
     b = np.concatenate([other, np.full(int(bk.sum() + sk.sum()), -1)])
     codes = np.concatenate([code, _BOX_SUPPORT - side[bk], _SEGMENT_SUPPORT - seg[sk]])
-    normals = np.concatenate([unit, _BOX_NORMALS[side[bk]],
-                              svec / np.hypot(svec[:, 0], svec[:, 1])[:, None]])
+    seg_unit = svec / np.hypot(svec[:, 0], svec[:, 1])[:, None]
+    normals = np.concatenate([unit, _BOX_NORMALS[side[bk]], seg_unit])
+    # Curved contacts (with a disk, or a segment's end point) and flat ones (a box wall,
+    # a segment's side: the normal is perpendicular to the segment).
+    along = np.array([np.subtract(*ends[k][::-1]) for k in seg[sk]]).reshape(-1, 2)
+    along /= np.maximum(np.hypot(along[:, 0], along[:, 1]), 1e-300)[:, None]
+    curved = np.concatenate([np.ones(len(pa), bool), np.zeros(int(bk.sum()), bool),
+                             np.abs((seg_unit * along).sum(axis=1)) > 1e-9])
 
     # The groups: slow disks joined by their contacts with each other.
     mutual = b >= 0
@@ -141,8 +154,8 @@ def held_groups(pos, vel, rad, mass, static, movable, box: Box, ends, cold_sides
         contacts = order[lo:hi]
         if len(contacts) == 0:
             continue  # (in free flight: nothing holds it)
-        forces = _held(members, a[contacts], b[contacts], normals[contacts], mass,
-                       gravity, tol)
+        forces = _held(members, a[contacts], b[contacts], normals[contacts],
+                       curved[contacts], mass, gravity, tol)
         if forces is None:
             continue
         rows_out.append(members)
@@ -153,16 +166,21 @@ def held_groups(pos, vel, rad, mass, static, movable, box: Box, ends, cold_sides
     return np.concatenate(rows_out), np.concatenate(sup_out)
 
 
-def _held(members, a, b, normals, mass, gravity, tol):
+def _held(members, a, b, normals, curved, mass, gravity, tol):
     """The contact forces that hold the group ``members`` up, or ``None``.
 
-    Held means *balanced and rigid*.  Balanced: non-negative forces along the contact
-    normals balance every member's weight to within ``tol`` of it.  Rigid: the contacts
-    that can carry force pin every member, so that any motion of the group opens a
-    loaded contact and lifts the group against gravity (the work of gravity on a motion
-    ``u`` is ``-f . (A^T u)`` for every balancing ``f``).  A balance that some motion
-    keeps, such as two frictionless disks side by side leaning on two pegs (an arch that
-    can swing, lowering its centre of mass), is unstable, and is not held.
+    Held means *balanced and stable*.  Balanced: non-negative forces ``f`` along the
+    contact normals balance every member's weight, ``A f = -m g``, to within ``tol`` of
+    it.  Stable: no motion of the group lowers it.  For a motion ``u``, gravity's work
+    is ``m g . u = -f . (A^T u)``: a motion that opens a loaded contact lifts the group.
+    A motion that keeps every loaded contact closed to first order (``A^T u = 0``
+    there, a floppy mode) moves the group at second order by ``-sum f |du_t|^2 /
+    (2 l)`` over the loaded curved contacts (``du_t`` the relative motion across a
+    contact, ``l`` its radius of curvature, the distance of the centres for two disks):
+    it lowers the group unless it moves no curved contact sideways.  Such a neutral
+    mode (a slide along a flat wall, a crystal's translation along a frictionless floor)
+    is allowed, as a disk on a flat floor is held; any other floppy mode (two
+    frictionless disks side by side leaning on two pegs swing down together) is not.
     """
     from scipy import optimize, sparse
 
@@ -170,8 +188,6 @@ def _held(members, a, b, normals, mass, gravity, tol):
     local = np.full(int(max(members.max(), a.max(), b.max())) + 1, -1, np.int64)
     local[members] = np.arange(k)
     m = len(a)
-    if m < 2 * k:
-        return None  # (fewer contacts than degrees of freedom pin nothing)
     cols = np.arange(m)
     # Column c: +n on disk a's two rows, -n on disk b's (when b is a slow disk).
     rows_a = 2 * local[a]
@@ -179,11 +195,14 @@ def _held(members, a, b, normals, mass, gravity, tol):
     rows_b = 2 * local[b[mutual]]
     r = np.concatenate([rows_a, rows_a + 1, rows_b, rows_b + 1])
     c = np.concatenate([cols, cols, cols[mutual], cols[mutual]])
-    v = np.concatenate([normals[:, 0], normals[:, 1], -normals[mutual, 0],
-                        -normals[mutual, 1]])
+
+    def columns(vectors, scale):
+        v = np.concatenate([vectors[:, 0], vectors[:, 1], -vectors[mutual, 0],
+                            -vectors[mutual, 1]])
+        return sparse.csr_matrix((v * scale[r], (r, c)), shape=(2 * k, m))
+
     # The equations per unit mass: A f / m = -g for every member.
-    scale = 1.0 / np.repeat(mass[members], 2)
-    matrix = sparse.csr_matrix((v * scale[r], (r, c)), shape=(2 * k, m))
+    matrix = columns(normals, 1.0 / np.repeat(mass[members], 2))
     rhs = -np.tile(gravity, k)
     # The balance that loads the most contacts, a linear program: A f = s (-g) with
     # f >= t, 0 <= t <= 1, s >= 1, the sum of the t largest (any balance, scaled by s,
@@ -203,21 +222,32 @@ def _held(members, a, b, normals, mass, gravity, tol):
     residual = (matrix @ forces - rhs).reshape(k, 2)
     if np.hypot(residual[:, 0], residual[:, 1]).max() > tol * np.hypot(*gravity):
         return None
-    if not _pinned(matrix, lp.x[m:2 * m] > 0.5, 2 * k):
+    loaded = lp.x[m:2 * m] > 0.5
+    ones = np.ones(2 * k)
+    tangents = np.column_stack([-normals[:, 1], normals[:, 0]])
+    if not _stable(columns(normals, ones), columns(tangents, ones), loaded,
+                   loaded & curved):
         return None
     return forces
 
 
-def _pinned(matrix, loaded, dof):
-    """Whether the contacts ``loaded`` (the columns of ``matrix``) pin every member:
-    their normals span all ``dof`` motions (no motion keeps them all closed)."""
-    if loaded.sum() < dof:
-        return False
+def _stable(normals, tangents, loaded, sideways):
+    """Whether every motion that keeps the ``loaded`` contacts closed (the null space of
+    their columns of ``normals``, transposed) moves none of the ``sideways`` contacts
+    across (their columns of ``tangents``): whether every floppy mode is neutral."""
+    dof = normals.shape[0]
     if dof > 2 * RIGID_LIMIT:
         return False  # (not decided: left in flight, as the group breaks up or grows)
-    sub = matrix[:, np.flatnonzero(loaded)].toarray()
-    singular = np.linalg.svd(sub, compute_uv=False)
-    return bool(singular.min() > RIGID_TOL * singular.max())
+    sub = normals[:, np.flatnonzero(loaded)].toarray().T  # (contacts, motions)
+    if sub.shape[0] == 0:
+        return False
+    _, singular, vt = np.linalg.svd(sub, full_matrices=True)
+    rank = int((singular > RIGID_TOL * singular[0]).sum())
+    floppy = vt[rank:]  # (modes, motions)
+    if len(floppy) == 0:
+        return True
+    across = tangents[:, np.flatnonzero(sideways)].toarray().T @ floppy.T
+    return bool(np.abs(across).max(initial=0.0) <= NEUTRAL_TOL)
 
 
 def _supports(members, a, codes, b, forces):

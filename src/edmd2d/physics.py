@@ -693,9 +693,9 @@ class Resting(Family):
     examined as groups: the disks no faster than ``speed`` that touch to within
     ``gap`` (each other or static bodies) come to rest together when they are held:
     non-negative contact forces along their contact normals balance every member's
-    weight, to within a millionth of it, and the contacts that can carry force pin
-    every member (a group that can move without opening a loaded contact, such as an
-    arch of two frictionless disks, is an unstable balance).
+    weight, to within a millionth of it, and no motion that keeps the loaded contacts
+    closed lowers the group (an arch of two frictionless disks balances, but swings
+    down: it is not held; a crystal free to slide along a frictionless floor is).
 
     On by default under gravity with an inelastic model (a coefficient of restitution
     below 1): the bounces of a disk settling on others would otherwise shrink without

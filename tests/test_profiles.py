@@ -7,7 +7,7 @@ import pytest
 from scipy.optimize import brentq
 
 import edmd2d as ed
-from edmd2d import measurements, theory
+from edmd2d import _profiles, measurements, theory
 from edmd2d import operations as op
 
 G = 0.05
@@ -144,3 +144,67 @@ def test_asking_for_more_blocks_than_samples_taken_is_refused():
     sim.run(until=3.0, operations=[p])
     with pytest.raises(ValueError, match="blocks"):
         p.result(blocks=5)
+
+
+def triangular_bed(rows, cols=10, flip=False):
+    """``rows`` rows of ``cols`` unit disks, a triangular crystal standing on the floor
+    of a box 20 high, periodic across (every other row shifted by a radius); ``flip``:
+    upside down, under gravity pointing up.  Returns positions, box and gravity."""
+    y = 0.5 + np.arange(rows) * np.sqrt(3.0) / 2.0
+    pos = np.array([[c + 0.5 + 0.5 * (r % 2), y[r]] for r in range(rows)
+                    for c in range(cols)])
+    pos[:, 0] %= cols  # (wrapped into the box, as a simulation's positions are)
+    if flip:
+        pos[:, 1] = 20.0 - pos[:, 1]
+    return pos, ed.Box(cols, 20.0, periodic=(True, False)), np.array([0.0, 1.0 if flip
+                                                                        else -1.0])
+
+
+@pytest.mark.parametrize("flip", [False, True])
+def test_the_packing_fraction_of_a_crystal_bed_is_exact(flip):
+    # (The geometry alone, on exact lattice positions: _bed is bed() past its checks.)
+    rows = 6
+    pos, box, g = triangular_bed(rows, flip=flip)
+    h = np.sqrt(3.0) / 2.0  # (the rows' spacing)
+    top = 1.0 + (rows - 1) * h
+    # Ending the band on the centres of row m: half of the bottom row's disks below
+    # their centres, then the crystal's own packing fraction between centre lines.
+    for m in (2, 4):
+        skin = top - (0.5 + m * h)
+        b = _profiles._bed(pos, np.full(len(pos), 0.5), box, g, skin, 1.0)
+        assert b.disks == rows * 10 and b.bottom == 0.0
+        assert b.height == pytest.approx(top, abs=1e-9)
+        assert b.top == pytest.approx(top, abs=1e-9)
+        crystal = math.pi / (2.0 * math.sqrt(3.0))
+        expected = (10 * math.pi / 8 + crystal * 10 * m * h) / (10 * (0.5 + m * h))
+        assert b.packing_fraction == pytest.approx(expected, rel=1e-9)
+
+
+def test_a_poured_bed_is_measured():
+    sim = ed.make_gas(300, 0.15, periodic=False, aspect=0.5, seed=3, restitution=0.9,
+                      wall_restitution=0.9, gravity=(0.0, -1.0))
+    sim.advance(until=100.0)
+    b = measurements.bed(sim)
+    assert b.disks == 300
+    # Below its surface a poured bed of equal disks is nearly crystalline: close to
+    # the triangular crystal's 0.9069, never above it.
+    assert 0.8 < b.packing_fraction < math.pi / (2.0 * math.sqrt(3.0))
+    # The disks' area spread over the width at that packing fills about the height.
+    filled = 300 * math.pi * 0.25 / (sim.box.width * b.packing_fraction)
+    assert abs(b.height - filled) < 2.0
+    assert b.top >= b.height
+
+
+def test_bed_refuses_what_is_not_a_bed():
+    sim = ed.make_gas(20, 0.1, seed=1)
+    with pytest.raises(ValueError, match="gravity"):
+        measurements.bed(sim)
+    tilted = ed.make_gas(20, 0.1, periodic=False, seed=1, gravity=(0.3, -1.0))
+    with pytest.raises(ValueError, match="axis"):
+        measurements.bed(tilted)
+    falling = ed.make_gas(20, 0.1, periodic=False, seed=1, gravity=(0.0, -1.0),
+                          restitution=0.9)
+    b = measurements.bed(falling)
+    assert b.disks == 0 and math.isnan(b.height) and math.isnan(b.packing_fraction)
+    with pytest.raises(ValueError, match="skin"):
+        measurements.bed(falling, skin=-1.0)

@@ -1,5 +1,6 @@
 """Profiles along an axis: density, packing fraction, flow velocity and granular
-temperature in slabs, with error bars (:class:`Profile`, :func:`profiles`).
+temperature in slabs, with error bars (:class:`Profile`, :func:`profiles`); and the
+height and packing fraction of a bed of disks at rest (:func:`bed`).
 
 Public through :mod:`edmd2d.measurements` (and the operation through
 :mod:`edmd2d.operations`).
@@ -18,6 +19,7 @@ from . import progress as _progress
 from ._measurement import _frozen, _stderr
 from ._operations import Every, Operation, Trigger, run
 from ._validate import as_count, as_float_array, as_positive_float
+from .geometry import Box
 
 if TYPE_CHECKING:  # (for the annotations only: simulation imports this module)
     from .simulation import Simulation
@@ -248,13 +250,15 @@ def profiles(sim: Simulation, duration: float, *, samples: int = 100, blocks: in
 
     Examples
     --------
-    A gas at rest on average: its flow velocity is zero within the errors.
+    A uniform gas: five slabs of equal area, which hold all 400 disks at every sample.
 
     >>> import edmd2d as ed
     >>> sim = ed.make_gas(400, 0.2, seed=2)
     >>> prof = ed.measurements.profiles(sim, 20.0, bins=5)
-    >>> bool((abs(prof.velocity) < 5 * prof.velocity_error).all())
-    True
+    >>> round(float(prof.density.sum() * sim.box.width * sim.box.height / 5), 9)
+    400.0
+    >>> prof.density.shape, prof.velocity.shape, prof.samples
+    ((5,), (5, 2), 100)
     """
     duration = as_positive_float("duration", duration)
     samples = as_count("samples", samples, minimum=1)
@@ -270,3 +274,123 @@ def profiles(sim: Simulation, duration: float, *, samples: int = 100, blocks: in
         if owned:
             bar.close()
     return op.result(blocks)
+
+
+@dataclass(frozen=True)
+class Bed:
+    """The disks at rest under gravity, as a bed: its height and packing fraction
+    (:func:`edmd2d.measurements.bed`).  Heights are measured against gravity from the
+    ``bottom``.
+
+    Attributes
+    ----------
+    disks : int
+        The disks at rest.
+    bottom : float
+        The floor (the box wall gravity points to), or on a periodic axis the lowest
+        point of a disk at rest.
+    height : float
+        The mean height of the bed's top surface above the bottom: over columns one
+        largest diameter wide across the box, the highest point of a disk at rest whose
+        centre lies in the column (the bottom for a column without one).
+    top : float
+        The height of the highest point of a disk at rest.
+    band : (float, float)
+        The heights between which ``packing_fraction`` is measured: from the bottom to
+        ``skin`` below ``height``, clear of the surface's roughness.
+    packing_fraction : float
+        The area of the disks at rest within ``band`` (exactly: each disk's part between
+        the band's lines) over the band's area; NaN for an empty band.
+    """
+
+    disks: int
+    bottom: float
+    height: float
+    top: float
+    band: tuple[float, float]
+    packing_fraction: float
+
+
+def bed(sim: Simulation, *, skin: float | None = None) -> Bed:
+    """The height and packing fraction of the bed of disks at rest in ``sim``.
+
+    Gravity must point along a box axis.  The bed is the disks at rest
+    (:attr:`~edmd2d.Simulation.resting`); immovable disks and disks in flight are not
+    part of it.
+
+    Parameters
+    ----------
+    sim : Simulation
+    skin : float, optional
+        >= 0: how far below the bed's mean height the band of the packing fraction
+        ends; default two largest diameters (the roughness of a settled surface).
+
+    Returns
+    -------
+    Bed
+        With ``disks = 0`` and NaN heights when no disk is at rest.
+
+    Raises
+    ------
+    ValueError
+        Without gravity, with gravity not along an axis, or for a negative ``skin``.
+
+    Examples
+    --------
+    One row of touching disks on a floor: the band from the floor to the top of the
+    row holds the disks' area, a quarter of pi of it.
+
+    >>> import numpy as np, edmd2d as ed
+    >>> x = np.arange(10) + 0.5
+    >>> sim = ed.Simulation(np.c_[x, np.full(10, 0.5)], np.zeros((10, 2)), 0.5,
+    ...                     box=ed.Box(10.0, 5.0, periodic=False), gravity=(0, -1),
+    ...                     restitution=0.9)
+    >>> _ = sim.advance(until=10.0)  # (past the first search for disks at rest)
+    >>> b = ed.measurements.bed(sim, skin=0.0)
+    >>> b.disks, round(b.height, 6), round(b.packing_fraction / (np.pi / 4), 6)
+    (10, 1.0, 1.0)
+    """
+    g = sim.gravity
+    if g is None or not np.any(g):
+        raise ValueError("a bed needs gravity: this simulation has none")
+    if g[0] != 0.0 and g[1] != 0.0:
+        raise ValueError(f"a bed is measured with gravity along a box axis, got {tuple(g)}")
+    d_max = 2.0 * float(np.max(sim.radii))
+    skin = 2.0 * d_max if skin is None else float(as_float_array("skin", skin, ()))
+    if not skin >= 0.0:
+        raise ValueError(f"skin must be >= 0, got {skin}")
+    rest = np.asarray(sim.resting)
+    return _bed(np.asarray(sim.positions)[rest], np.asarray(sim.radii)[rest], sim.box,
+                g, skin, d_max)
+
+
+def _bed(pos, rad, box: Box, g, skin: float, d_max: float) -> Bed:
+    """:func:`bed` of the disks ``pos``, ``rad`` (checked arguments)."""
+    k = 0 if g[0] != 0.0 else 1
+    length = float(box.size[k])
+    across = float(box.size[1 - k])
+    n = len(pos)
+    if n == 0:
+        return Bed(0, math.nan, math.nan, math.nan, (math.nan, math.nan), math.nan)
+    # Heights against gravity, and the floor.
+    up = pos[:, k] if g[k] < 0.0 else length - pos[:, k]
+    bottom = 0.0 if not box.periodic[k] else float(np.min(up - rad))
+    h = up - bottom
+    columns = max(int(across // d_max), 1)
+    column = np.minimum((pos[:, 1 - k] / across * columns).astype(np.int64), columns - 1)
+    tops = np.zeros(columns)
+    np.maximum.at(tops, column, h + rad)
+    height = float(tops.mean())
+    lo, hi = 0.0, height - skin
+    if hi <= lo:
+        packing = math.nan
+    else:
+        area = _area_below(hi - h, rad) - _area_below(lo - h, rad)
+        packing = float(area.sum() / (across * (hi - lo)))
+    return Bed(n, bottom, height, float(np.max(h + rad)), (lo, hi), packing)
+
+
+def _area_below(d: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """The area of a disk of radius ``r`` below a line ``d`` above its centre."""
+    d = np.clip(d, -r, r)
+    return r * r * (math.pi - np.arccos(d / r)) + d * np.sqrt(r * r - d * d)

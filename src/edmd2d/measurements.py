@@ -1,5 +1,5 @@
 """Thermodynamic and kinetic measurements over a time window: :func:`measure`, and
-profiles along an axis: :func:`profiles`.
+profiles along an axis: :func:`profiles`, and a bed at rest: :func:`bed`.
 
 Everything here is a true two-dimensional quantity with ``k_B = 1``.  The pressure comes
 from the collision virial, which the engine accumulates exactly at every disk-disk
@@ -21,7 +21,7 @@ from ._facade import require_simulation
 from ._jsonable import decode, encode
 from ._measurement import Measurement, _frozen, _stderr
 from ._operations import Blocks, Operation, Trigger, run
-from ._profiles import Profile, Profiles, profiles
+from ._profiles import Bed, Profile, Profiles, bed, profiles
 from ._sums import dot, weighted_sum
 from ._validate import as_count, as_positive_float
 from .geometry import Box, Wall, container
@@ -31,7 +31,7 @@ if TYPE_CHECKING:  # (for the annotations only: simulation imports this module)
 
 __all__ = ["Measurement", "measure", "Measure", "kinetic_temperature",
            "degrees_of_freedom", "container_area", "Cooling", "cooling", "profiles",
-           "Profile", "Profiles"]
+           "Profile", "Profiles", "bed", "Bed"]
 
 
 def degrees_of_freedom(sim: Simulation) -> tuple[int, tuple[bool, bool]]:

@@ -20,7 +20,7 @@ MODULES = ["edmd2d", "edmd2d.geometry", "edmd2d.simulation", "edmd2d.builders",
            "edmd2d.compress", "edmd2d.ensemble", "edmd2d.physics",
            # (private modules whose objects public modules export: doctest finds an
            # object's examples only in the module that defines it)
-           "edmd2d._operations", "edmd2d._profiles", "edmd2d._validate", "edmd2d.viz._scene",
+           "edmd2d._operations", "edmd2d._validate", "edmd2d.viz._scene",
            "edmd2d.viz._animation", "edmd2d.viz._save", "edmd2d.reference._loop",
            "edmd2d.config._run", "edmd2d.config._sweep"]
 

@@ -25,7 +25,7 @@ LAYERS = [
      "progress", "_compile_notice", "theory", "geometry", "_engine", "_gaps", "_balance"},
     # what the simulation is built from, and what reads a simulation through its
     # public state only
-    {"models", "physics", "_placement", "_operations", "_profiles", "reference", "_checks",
+    {"models", "physics", "_placement", "_operations", "reference", "_checks",
      "_state"},
     {"measurements"},
     {"simulation"},

@@ -7,7 +7,7 @@ import pytest
 from scipy.optimize import brentq
 
 import edmd2d as ed
-from edmd2d import _profiles, measurements, theory
+from edmd2d import measurements, theory
 from edmd2d import operations as op
 
 G = 0.05
@@ -171,7 +171,7 @@ def test_the_packing_fraction_of_a_crystal_bed_is_exact(flip):
     # their centres, then the crystal's own packing fraction between centre lines.
     for m in (2, 4):
         skin = top - (0.5 + m * h)
-        b = _profiles._bed(pos, np.full(len(pos), 0.5), box, g, skin, 1.0)
+        b = measurements._bed(pos, np.full(len(pos), 0.5), box, g, skin, 1.0)
         assert b.disks == rows * 10 and b.bottom == 0.0
         assert b.height == pytest.approx(top, abs=1e-9)
         assert b.top == pytest.approx(top, abs=1e-9)

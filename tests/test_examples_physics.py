@@ -292,3 +292,26 @@ def test_a_run_continued_in_another_sweep_is_counted_once(tmp_path):
                      "state": str(state), "task": name})
     kept = module.drop_continued(rows)
     assert [r["task"] for r in kept] == ["long", "other", "elsewhere"]
+
+
+def test_poured_bed_comes_to_rest_is_kicked_and_comes_to_rest_again(tmp_path, capsys):
+    """60 disks (e = 0.9) poured under gravity: every disk at rest by t = 100 with no
+    event after; the lowest row kicked up at 6 wakes the bed, which is at rest again by
+    t = 200; the beds' packing fractions below their surfaces lie between a loose
+    packing's 0.6 and the triangular crystal's 0.9069; the energy books hold to
+    rounding (1e-12 of the energy)."""
+    module = load("poured_bed")
+    module.N, module.ANIMATE = 60, 2.0
+    out = tmp_path / "bed.gif"
+    result = module.main(out)
+    assert out.stat().st_size > 1000
+    assert out.with_name("bed_kick.gif").stat().st_size > 1000
+    assert result["rest_1"] is not None and result["rest_1"] < module.KICK
+    assert result["rest_2"] is not None and result["rest_2"] < module.END
+    assert result["quiet_1"] == 0 and result["quiet_2"] == 0
+    assert result["woken"] > 10
+    for bed in (result["bed_1"], result["bed_2"]):
+        assert bed.disks == 60
+        assert 0.6 < bed.packing_fraction < math.pi / (2.0 * math.sqrt(3.0))
+    assert result["books"] < 1e-12
+    assert "wrote" in capsys.readouterr().out

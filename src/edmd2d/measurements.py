@@ -238,14 +238,20 @@ def measure(sim: Simulation, duration: float, *, blocks: int = 10,
     if area is not None:
         area = as_positive_float("area", area)
     window = Measure(Blocks(duration, blocks), area=area)
-    bar, owned = _progress.bar(progress, total=duration, unit="time", desc="measure")
+    _run_window(sim, duration, window, progress, "measure")
+    return window.result()
+
+
+def _run_window(sim, duration: float, operation: Operation, progress, desc: str) -> None:
+    """Run ``sim`` for ``duration`` with ``operation``, and a progress bar of the
+    simulated time if ``progress`` asks for one (closed after, if made here)."""
+    bar, owned = _progress.bar(progress, total=duration, unit="time", desc=desc)
     try:
-        run(sim, until=sim.time + duration, operations=[window],
-                        progress=bar if bar is not None else False)
+        run(sim, until=sim.time + duration, operations=[operation],
+            progress=bar if bar is not None else False)
     finally:
         if owned:
             bar.close()
-    return window.result()
 
 
 class Measure(Operation):
@@ -947,13 +953,7 @@ def profiles(sim: Simulation, duration: float, *, samples: int = 100, blocks: in
     if samples < blocks:
         raise ValueError(f"samples ({samples}) must be at least blocks ({blocks})")
     op = Profile(Every(dt=duration / samples), axis=axis, bins=bins, span=span)
-    bar, owned = _progress.bar(progress, total=duration, unit="time", desc="profiles")
-    try:
-        run(sim, until=sim.time + duration, operations=[op],
-            progress=bar if bar is not None else False)
-    finally:
-        if owned:
-            bar.close()
+    _run_window(sim, duration, op, progress, "profiles")
     return op.result(blocks)
 
 

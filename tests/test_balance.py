@@ -95,3 +95,16 @@ def test_a_disk_in_a_v_of_segments_and_one_on_a_static_disk_are_held():
     assert sorted(held.tolist()) == [0, 3]
     assert sorted(supports[list(held).index(0), :2].tolist()) == [-7, -6]
     assert sorted(supports[list(held).index(3), :2].tolist()) == [1, 2]
+
+
+def test_the_supports_kept_are_the_disks_under_each_disk_first():
+    pos, box = crystal(8, 8, 8.0)
+    held, supports = groups(pos, box)
+    assert len(held) == len(pos)
+    for k, i in enumerate(held):
+        below = [j for j in range(len(pos)) if pos[j, 1] < pos[i, 1] - 0.1
+                 and np.hypot(*(pos[j] - pos[i])) < 1.0 + 1e-9]
+        if pos[i, 1] == 0.5:
+            assert supports[k, 0] == -2 - 2  # (the floor)
+        else:
+            assert sorted(supports[k, :len(below)].tolist()) == sorted(below), (i, below)

@@ -244,7 +244,7 @@ def test_the_poured_bed_of_300_disks_comes_to_rest_for_every_seed(seed):
     poured_bed(seed, 300.0)
 
 
-def pegged_pair(pins=False):
+def pegged_pair(pins=False, **kwargs):
     """Two disks side by side (touching) between two pegs (immovable, radius 0.5) 2.2
     apart, each leaning on the peg below and outside it: forces 1.25 from each peg and
     0.75 between the disks balance both weights (per unit weight), though neither is
@@ -260,7 +260,23 @@ def pegged_pair(pins=False):
         pos += [[1.9, 4.6 + lift + 1e-5], [4.1, 4.6 + lift + 1e-5]]
     mass = [1.0, 1.0] + [np.inf] * (len(pos) - 2)
     return Simulation(pos, np.zeros((len(pos), 2)), 0.5, masses=mass,
-                      box=Box(6, 20, periodic=False), **INELASTIC)
+                      box=Box(6, 20, periodic=False), **INELASTIC, **kwargs)
+
+
+def test_with_a_thermostat_the_searches_go_on_and_a_run_continues_bit_identically():
+    # The redraws wake the disks now and then: an empty queue is not a system at rest.
+    def pair():
+        return pegged_pair(pins=True, thermostat=(1e-4, 0.01), seed=3)
+
+    every = pair().families["resting"].every
+    whole, steps = pair(), pair()
+    whole.advance(until=40 * every)
+    for k in range(1, 41):
+        steps.advance(until=k * every)
+    assert np.array_equal(whole.positions, steps.positions)
+    assert whole.counts == steps.counts
+    assert whole.counts.redraws > 0 and whole.counts.rests > 2
+    whole.advance(collisions=100)  # (collisions come, after a redraw wakes a disk)
 
 
 def test_disks_that_hold_one_another_up_come_to_rest_together():

@@ -27,7 +27,8 @@ A group is held (:func:`_held`) when it is
 Both come from one linear program, the balance that loads the most contacts
 (``scipy.optimize.linprog``, HiGHS), and the singular values of the loaded contacts'
 normals (the floppy modes) and their tangents.  The supports kept for each member are
-its contacts with the largest forces.
+its loaded contacts, those that push it most against gravity (the bodies under it)
+first.
 
 The balance is exact to rounding when it exists: in the clusters of the poured
 300-disk bed (four seeds, 25 to 44 disks each, 59 to 102 contacts) the largest
@@ -160,7 +161,7 @@ def held_groups(pos, vel, rad, mass, static, movable, box: Box, ends, cold_sides
             continue
         rows_out.append(members)
         sup_out.append(_supports(members, a[contacts], codes[contacts], b[contacts],
-                                 forces))
+                                 normals[contacts], forces, gravity))
     if not rows_out:
         return none
     return np.concatenate(rows_out), np.concatenate(sup_out)
@@ -250,20 +251,26 @@ def _stable(normals, tangents, loaded, sideways):
     return bool(np.abs(across).max(initial=0.0) <= NEUTRAL_TOL)
 
 
-def _supports(members, a, codes, b, forces):
-    """Each member's supports: the bodies of its contacts by force, largest first."""
+def _supports(members, a, codes, b, normals, forces, gravity):
+    """Each member's supports: the bodies of its loaded contacts, those that push it
+    most against gravity first (the bodies under it), then those at its sides, then
+    those above it (``MAX_SUPPORTS`` at most: a disk is re-examined when one of them
+    wakes, so the bodies it rests on come first)."""
+    up = -np.asarray(gravity, float) / np.hypot(*gravity)
+    lift = normals @ up  # (the push on a along "up", per unit force; on b it is -lift)
+    entries = []  # (member, how much the contact pushes it up, body)
+    for c in np.flatnonzero(forces > 0.0):
+        entries.append((int(a[c]), float(forces[c] * lift[c]),
+                        int(codes[c] if b[c] < 0 else b[c])))
+        if b[c] >= 0:
+            entries.append((int(b[c]), float(-forces[c] * lift[c]), int(a[c])))
+    entries.sort(key=lambda e: (e[0], -e[1]))
     out = np.full((len(members), _MAX_SUPPORTS), -1, np.int32)
     index = {int(d): k for k, d in enumerate(members)}
     kept = np.zeros(len(members), np.int64)
-    for c in np.argsort(-forces, kind="stable"):
-        if forces[c] <= 0.0:
-            break
-        # The body that pushes a, and for a contact between members, a as b's support.
-        for disk, body in ((a[c], codes[c] if b[c] < 0 else b[c]), (b[c], a[c])):
-            if disk < 0:
-                continue
-            k = index[int(disk)]
-            if kept[k] < _MAX_SUPPORTS:
-                out[k, kept[k]] = body
-                kept[k] += 1
+    for disk, _, body in entries:
+        k = index[disk]
+        if kept[k] < _MAX_SUPPORTS:
+            out[k, kept[k]] = body
+            kept[k] += 1
     return out

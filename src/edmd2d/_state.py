@@ -486,7 +486,7 @@ class EngineState:
         The physics families not in use are ``None``; a model hands over restitution
         and the TC model always (a model of heated walls or a thermostat alone runs
         its contacts with ``e = 1`` through them), the others as it uses them."""
-        families = _NO_MODEL if self.model is None else self.model.engine_families()
+        families = self.model_families()
         rest = self.rest_bundle()
         if rest is not None and families.contact is not None:
             # (Where disks come to rest, the box walls hold disks by resting.slide, not by
@@ -530,11 +530,16 @@ class EngineState:
         check = rest.every * (math.floor(t / rest.every) + 1.0)
         return check if check > t else check + rest.every  # (whatever the rounding)
 
+    def model_families(self):
+        """The engine families of the model (``layout.ModelFamilies``, all ``None``
+        without a model)."""
+        return _NO_MODEL if self.model is None else self.model.engine_families()
+
     def rest_groups(self) -> int:
         """Put to rest, at :attr:`time`, the groups of slow flying disks that hold one
         another up (``_balance.py``); returns how many disks came to rest."""
         rest = self.families["resting"]
-        families = _NO_MODEL if self.model is None else self.model.engine_families()
+        families = self.model_families()
         cold = np.ones(4 + len(self.wa), bool)
         if families.heated is not None:
             cold = families.heated.kt <= 0.0
@@ -765,15 +770,17 @@ class EngineState:
                 continue
             reached = status in (_layout.REACHED_TIME, _layout.NO_EVENTS)
             if reached and self.rest_check is not None and t_run == t_check:
+                # (An empty queue with no redraw to come: nothing moves until something
+                # is changed from outside.  With a thermostat the next redraw may just
+                # lie past this search.)
+                still = status == _layout.NO_EVENTS and self.model_families().thermostat is None
+                if still and t_end == math.inf:
+                    return status, info, remaining  # (no event can ever come)
                 self.time = t_run
                 out[0] = t_run
                 rested = self.rest_groups()
-                if status == _layout.NO_EVENTS and rested == 0:
-                    # Nothing moves until something is changed from outside: no
-                    # search can find anything before then.
-                    if t_end == math.inf:
-                        self.rest_check = t_check + self.families["resting"].every
-                        return status, info, remaining
+                if still and rested == 0:
+                    # No search can find anything before the end: skip them.
                     self.rest_check = self.first_rest_check(t_end)
                 else:
                     self.rest_check = t_check + self.families["resting"].every

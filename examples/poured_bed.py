@@ -18,9 +18,10 @@ rounding (the energy of a disk put to rest counts as dissipated, and is given ba
 it wakes).
 
 Writes an animation of the pour (``.gif``, or ``.mp4`` if you name one) and, beside it
-(``_kick`` added to its name), one of the kick, disks coloured by speed; prints when the bed came to rest, its height and
-packing fraction (:func:`edmd2d.measurements.bed`), the events per unit time while it
-settles and once at rest, and the energy books::
+(``_kick`` added to its name), one of the kick, disks coloured by speed; prints when
+the bed came to rest, its height and packing fraction
+(:func:`edmd2d.measurements.bed`), the events while it settled and once at rest, and
+the energy books::
 
     python examples/poured_bed.py [--n 300] [--seed 1] [examples/output/poured_bed.gif]
 """

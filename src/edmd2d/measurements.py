@@ -740,7 +740,7 @@ class Profiles:
         (2 (n - 1))`` over the ``n`` disk visits of a block (``u`` the block's flow
         velocity in the slab; 2D, ``k_B = 1``); NaN where a block saw fewer than two.
     counts : ndarray of int64, shape (B,)
-        Disk visits over all samples.
+        Disk visits over the samples used (those that fill the blocks).
     samples, blocks : int
     """
 
@@ -997,7 +997,8 @@ def bed(sim: Simulation, *, skin: float | None = None) -> Bed:
 
     Gravity must point along a box axis.  The bed is the disks at rest
     (:attr:`~edmd2d.Simulation.resting`); immovable disks and disks in flight are not
-    part of it.
+    part of it.  On an axis along gravity that is periodic, the bottom is the lowest
+    disk at rest: a bed across the box's edge there is not measured as one.
 
     Parameters
     ----------

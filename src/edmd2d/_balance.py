@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._engine.resting import BOX_SUPPORT, MAX_SUPPORTS, SEGMENT_SUPPORT
 from ._gaps import _candidates
 from .geometry import Box
 
@@ -56,10 +57,6 @@ RIGID_TOL = 1e-9
 #: The largest sideways motion of a curved contact in a floppy mode (of unit norm) that
 #: counts as none: such a mode is neutral.
 NEUTRAL_TOL = 1e-7
-# Support codes, as in _engine/resting.py.
-_BOX_SUPPORT = -2
-_SEGMENT_SUPPORT = -6
-_MAX_SUPPORTS = 4
 #: The inward unit normal of each box wall (x = 0, x = width, y = 0, y = height).
 _BOX_NORMALS = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]])
 
@@ -92,7 +89,8 @@ def held_groups(pos, vel, rad, mass, static, movable, box: Box, ends, cold_sides
     rows : ndarray of int64
         The disks held, group by group.
     supports : ndarray of int32, shape (len(rows), 4)
-        The supports of each, by the largest contact force first: disk rows, box walls
+        The supports of each, those that push it most against gravity first (see
+        :func:`_supports`), coded as in ``_engine/resting.py``: disk rows, box walls
         ``-2 - side``, segments ``-6 - k``; ``-1`` pads.
     """
     from scipy import sparse
@@ -100,7 +98,7 @@ def held_groups(pos, vel, rad, mass, static, movable, box: Box, ends, cold_sides
 
     n = len(pos)
     slow = ~static & movable & ((vel * vel).sum(axis=1) <= speed * speed)
-    none = (np.zeros(0, np.int64), np.zeros((0, _MAX_SUPPORTS), np.int32))
+    none = (np.zeros(0, np.int64), np.zeros((0, MAX_SUPPORTS), np.int32))
     if not slow.any():
         return none
     sub = np.flatnonzero(slow | static)
@@ -126,7 +124,7 @@ def held_groups(pos, vel, rad, mass, static, movable, box: Box, ends, cold_sides
     svec = cand.seg_vec[sk]
     a = np.concatenate([pa, bd[bk], sd[sk]])
     b = np.concatenate([other, np.full(int(bk.sum() + sk.sum()), -1)])
-    codes = np.concatenate([code, _BOX_SUPPORT - side[bk], _SEGMENT_SUPPORT - seg[sk]])
+    codes = np.concatenate([code, BOX_SUPPORT - side[bk], SEGMENT_SUPPORT - seg[sk]])
     seg_unit = svec / np.hypot(svec[:, 0], svec[:, 1])[:, None]
     normals = np.concatenate([unit, _BOX_NORMALS[side[bk]], seg_unit])
     # Curved contacts (with a disk, or a segment's end point) and flat ones (a box wall,
@@ -265,12 +263,12 @@ def _supports(members, a, codes, b, normals, forces, gravity):
         if b[c] >= 0:
             entries.append((int(b[c]), float(-forces[c] * lift[c]), int(a[c])))
     entries.sort(key=lambda e: (e[0], -e[1]))
-    out = np.full((len(members), _MAX_SUPPORTS), -1, np.int32)
+    out = np.full((len(members), MAX_SUPPORTS), -1, np.int32)
     index = {int(d): k for k, d in enumerate(members)}
     kept = np.zeros(len(members), np.int64)
     for disk, _, body in entries:
         k = index[disk]
-        if kept[k] < _MAX_SUPPORTS:
+        if kept[k] < MAX_SUPPORTS:
             out[k, kept[k]] = body
             kept[k] += 1
     return out

@@ -192,6 +192,43 @@ def test_an_impact_wakes_the_disks_at_rest_and_they_settle_again():
         assert held_by_statics(sim, i, sim.families["resting"].gap)
 
 
+def test_a_slow_impact_that_the_bed_takes_leaves_it_at_rest():
+    # A row of five disks fills the floor from wall to wall; a sixth, dropped from 0.5
+    # above the row's top, lands at speed 1, below press = sqrt(2 |g| d) = 1.41,
+    # pushing the disk it hits into the floor and its neighbours.  They take it (as
+    # they take every later bounce): nothing of the row moves, and the sixth disk
+    # comes to rest in a groove of the row.
+    x = 0.5001 + np.arange(5) * 1.0005
+    pos = np.vstack([np.column_stack([x, np.full(5, 0.5001)]), [x[2] + 0.3, 2.0]])
+    sim = Simulation(pos, np.zeros((6, 2)), 0.5, box=Box(x[-1] + 0.5006, 6.0, periodic=False),
+                     **INELASTIC)
+    rest = sim.families["resting"]
+    assert rest.press == pytest.approx(np.sqrt(2.0 * 1.0 * 1.0))
+    e0 = sim.total_energy()
+    sim.advance(until=0.5)  # the row at rest before the impact
+    assert sim.resting[:-1].all()
+    row = sim.positions[:-1].copy()
+    sim.advance(until=200.0)
+    assert sim.counts.wakes == 0
+    assert sim.resting.all()
+    assert np.array_equal(sim.positions[:-1], row)
+    assert sim.positions[-1, 1] == pytest.approx(0.5001 + np.sqrt(1.0 - 0.50025**2), abs=2e-3)
+    assert books(sim, e0) == pytest.approx(0.0, abs=1e-12 * e0)
+
+
+def test_a_slow_impact_that_the_supports_cannot_take_wakes_the_disk():
+    # A disk alone on the frictionless floor is hit from the side at 0.5 (below
+    # press): the floor cannot take a sideways push, so it wakes and slides off.
+    pos = [[3.0, 0.5001], [1.5, 0.5001]]
+    sim = Simulation(pos, [[0.0, 0.0], [0.5, 0.0]], 0.5, box=Box(8.0, 4.0, periodic=False),
+                     **INELASTIC)
+    sim.advance(until=0.5)
+    assert sim.resting[0]
+    sim.advance(until=2.5)  # hit at t = 2
+    assert sim.counts.wakes >= 1
+    assert sim.positions[0, 0] > 3.1
+
+
 def test_without_resting_the_same_row_stops_with_an_inelastic_collapse():
     sim = settled_row(resting=False, tc=0.0)
     with pytest.raises(RuntimeError, match="inelastic collapse"):

@@ -681,9 +681,11 @@ class Resting(Family):
     inside the cone of their normals, or one of them is a flat wall whose normal points
     against gravity).  Its kinetic energy then counts as dissipated, and it holds no
     event until it wakes: when a flying disk hits it with a normal speed above
-    ``wake``, when a support of its wakes (a cascade upwards), when the thermostat
-    redraws its velocity, or when the velocities, positions, gravity or walls are set.
-    A softer impact bounces off it as off a fixed body.  A bounce on a box wall that
+    ``wake`` (above ``press``, if its static contacts can take the impact: the impact
+    pushes it into the cone of their normals), when a support of its wakes (a cascade
+    upwards), when the thermostat redraws its velocity, or when the velocities,
+    positions, gravity or walls are set.  A softer impact bounces off it as off a fixed
+    body: the bed below it is taken as rigid, and takes the momentum, as a wall does.  A bounce on a box wall that
     gravity presses a disk into, slower than ``speed``, leaves it sliding along
     the wall.
 
@@ -712,6 +714,12 @@ class Resting(Family):
         ``h``: the widest gap to a support.
     wake : float
         ``sqrt(2 |g| h)``: the slowest impact that wakes a resting disk.
+    press : float
+        ``sqrt(2 |g| d)``, ``d`` the smallest diameter: the slowest impact that wakes
+        a resting disk whose static contacts can take it (an impact that could lift it
+        by its diameter).  Slower ones are the endless small bounces of disks settling
+        on a bed; waking the disk they hit, and in cascade all it holds, would set the
+        bed in flight again and again.
     soft : float
         ``speed / 10``: impacts with a normal speed below it are elastic (the
         coefficient of restitution of real grains tends to 1 at small impact speeds);
@@ -737,6 +745,7 @@ class Resting(Family):
     speed: float
     gap: float
     wake: float
+    press: float
     soft: float
 
     @classmethod
@@ -788,8 +797,9 @@ class Resting(Family):
             return None
         if resting is None and not system.inelastic:
             return None
-        v = float(np.sqrt(2.0 * np.hypot(*system.gravity) * h))
-        return cls(h, v, h, v, 0.1 * v)
+        g = float(np.hypot(*system.gravity))
+        v = float(np.sqrt(2.0 * g * h))
+        return cls(h, v, h, v, float(np.sqrt(4.0 * g * system.radii.min())), 0.1 * v)
 
     @property
     def every(self) -> float:

@@ -446,6 +446,9 @@ class Rest(NamedTuple):
     #: A resting disk hit with a normal speed above this wakes; a softer impact
     #: bounces off it.
     wake: float
+    #: A resting disk hit with a normal speed up to this, by an impact its static
+    #: contacts can take, stays at rest (the impact bounces off it).
+    press: float
     #: Impacts with a normal speed below this are elastic (``Contact.soft``).
     soft: float
     #: int32, shape (N, ``resting.MAX_SUPPORTS``): each resting disk's supports (disk

@@ -30,7 +30,9 @@ A resting disk wakes (:func:`wake`):
 - when a flying disk hits it with a normal speed above ``rest.wake``: it then takes
   part in that collision with its own mass.  A softer impact leaves it at rest: the
   flying disk bounces off it as off a fixed body (:func:`collide_static`; the bed
-  takes the momentum, as a wall does);
+  takes the momentum, as a wall does).  So does an impact up to ``rest.press`` that
+  its static contacts can take (it pushes the disk into the cone of their normals,
+  :func:`_cone`): the bed under it counts as rigid;
 - when one of its supports wakes: the disks it holds wake in turn, a cascade upwards;
 - when a thermostat redraws its velocity; the Python layer wakes every disk when the
   velocities, positions, gravity or walls are set.
@@ -203,7 +205,8 @@ def meet(i, j, t, aux, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, 
          wa, wb, wstart, wwall, wsx, wsy, acc, counts, heated, gravity, rest):
     """Flying disk ``i`` meets disk ``j`` (both at ``t``; ``j`` through the image shift
     ``aux``): whether ``j`` is at rest and stays so, the impact being no faster than
-    ``rest.wake``.  A faster impact wakes ``j`` (and what it supports) first."""
+    ``rest.wake``, or no faster than ``rest.press`` and held by ``j``'s static
+    contacts.  Any other impact wakes ``j`` (and what it supports) first."""
     if not is_resting(j, gravity):
         return False
     sx, sy = unpack_shift(aux)
@@ -212,7 +215,13 @@ def meet(i, j, t, aux, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, 
     s = S[i, VX] * dx + S[i, VY] * dy  # (j does not move)
     # The normal speed of the impact is -s / |d|: compared squared (s < 0 to count).
     w = rest.wake
-    if s < 0.0 and s * s > w * w * (dx * dx + dy * dy):
+    dd = dx * dx + dy * dy
+    if s < 0.0 and s * s > w * w * dd:
+        if s * s <= rest.press * rest.press * dd:
+            ln = math.sqrt(dd)
+            if _cone(j, t, dx / ln, dy / ln, False, S, E, invm, gi, gf, head, nxt, wa, wb,
+                     wstart, wwall, wsx, wsy, heated, gravity, rest):
+                return True
         wake(j, t, j, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, nxt,
              wa, wb, wstart, wwall, wsx, wsy, acc, counts, heated, gravity, rest)
         return False
@@ -439,13 +448,23 @@ def held(i, t, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy, h
     """Whether disk ``i`` (at ``t``) is held by the static bodies within ``rest.gap``
     of it (see the module notes); if so its supports are written to
     ``rest.supports[i]``."""
+    g = math.hypot(gravity.gx, gravity.gy)
+    return _cone(i, t, -gravity.gx / g, -gravity.gy / g, True, S, E, invm, gi, gf, head,
+                 nxt, wa, wb, wstart, wwall, wsx, wsy, heated, gravity, rest)
+
+
+@njit
+def _cone(i, t, upx, upy, write, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx,
+          wsy, heated, gravity, rest):
+    """Whether the static bodies within ``rest.gap`` of disk ``i`` (at ``t``) hold it
+    against a push opposite to the unit vector ``up`` without friction: ``up`` lies
+    strictly inside the cone of their normals, or one of them is a flat wall whose
+    normal is ``up``.  If so, and ``write``, its supports are written to
+    ``rest.supports[i]``."""
     support = gravity.support
     codes = rest.codes
     angles = rest.angles
     n = 0
-    g = math.hypot(gravity.gx, gravity.gy)
-    upx = -gravity.gx / g
-    upy = -gravity.gy / g
     x = S[i, X]
     y = S[i, Y]
     r = S[i, R]
@@ -548,8 +567,8 @@ def held(i, t, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy, h
             pos = a
             pos_k = k
     held = flat_k >= 0 or (neg_k >= 0 and pos_k >= 0 and pos - neg < math.pi)
-    if not held:
-        return False
+    if not held or not write:
+        return held
     # At rest: keep the supports that hold it first, then the others that fit.
     sup = rest.supports
     for s in range(MAX_SUPPORTS):

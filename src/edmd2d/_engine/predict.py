@@ -13,6 +13,9 @@ import math
 from .._jit import njit
 
 INF = math.inf
+# The factor of the rounding-error bounds of :func:`_bisect`: 16 unit roundoffs, twice
+# the nine that the longest chain of roundings there can add up to.
+_ROUNDING = 8.0 * 2.0**-52
 
 
 @njit
@@ -319,15 +322,118 @@ def _bisect_rate(lo, hi, px, py, vx, vy, ax, ay):
     """The zero of ``s`` in ``[lo, hi]``, where ``s`` is monotone and changes sign,
     bisected to the last bit (the turning point of the squared distance)."""
     neg_lo = _rate(lo, px, py, vx, vy, ax, ay) < 0.0
+    return _bisect(0, lo, hi, neg_lo, px, py, vx, vy, ax, ay, 0.0)[0]
+
+
+@njit
+def _value(which, t, px, py, vx, vy, ax, ay, d2):
+    """``which`` 0: ``s(t)`` and its slope; 1: ``-f(t)`` and its slope.  The value is
+    computed exactly as :func:`_gap` computes it (the bisection's signs); the slope only
+    guides the Newton steps of :func:`_bisect`."""
+    f, s = _gap(t, px, py, vx, vy, ax, ay, d2)
+    if which == 1:
+        return -f, -2.0 * s
+    x = px + t * (vx + 0.5 * ax * t)
+    y = py + t * (vy + 0.5 * ay * t)
+    ux = vx + ax * t
+    uy = vy + ay * t
+    return s, ux * ux + uy * uy + x * ax + y * ay
+
+
+@njit
+def _bisect(which, lo, hi, neg_lo, px, py, vx, vy, ax, ay, d2):
+    """The adjacent floats ``(lo, hi)`` at which bisecting ``[lo, hi]`` for the sign
+    change of the monotone ``v`` (:func:`_value` ``which``; ``lo``'s side: ``(v < 0)
+    == neg_lo``) ends: the same two floats, bit for bit, but with about a third of the
+    evaluations.
+
+    Bisection from a wide interval to the last bit takes some 60 halvings, nearly all
+    of them far from the root, where the sign of ``v`` is certain.  So the root is first
+    bracketed by safeguarded Newton steps, and points ``a < root < b`` are found where
+    ``|v|`` exceeds twice a bound on its rounding error over ``[lo, hi]`` (``v`` is
+    monotone on it, so every point below ``a`` has ``lo``'s sign when computed, and
+    every point above ``b`` has ``hi``'s).  The halvings are then replayed: a midpoint
+    outside ``[a, b]`` takes its side without an evaluation, one inside is evaluated
+    as before.  Within the rounding band around the root, where the computed sign may
+    flip back and forth, the evaluations are the bisection's own, so the result is."""
+    # A bound on the rounding error of v over [lo, hi] (0 <= t <= T): each coordinate
+    # of p + v t + a t^2/2 and of v + a t is computed to within a few roundings of the
+    # sum of its terms' magnitudes.
+    T = max(abs(lo), abs(hi))
+    xx = abs(px) + T * (abs(vx) + 0.5 * abs(ax) * T)
+    xy = abs(py) + T * (abs(vy) + 0.5 * abs(ay) * T)
+    if which == 0:
+        err = _ROUNDING * (xx * (abs(vx) + abs(ax) * T) + xy * (abs(vy) + abs(ay) * T))
+    else:
+        err = _ROUNDING * (xx * xx + xy * xy + d2)
+    cert = 2.0 * err
+    a = lo  # certain: a midpoint at or below a is on lo's side, at or above b on hi's
+    b = hi  # (the ends themselves are never midpoints)
+    wl = lo
+    wh = hi
+    t = 0.5 * (lo + hi)
+    slope = 0.0
+    for _ in range(200):
+        v, slope = _value(which, t, px, py, vx, vy, ax, ay, d2)
+        sure = abs(v) > cert
+        if (v < 0.0) == neg_lo:
+            wl = t
+            if sure:
+                a = t
+        else:
+            wh = t
+            if sure:
+                b = t
+        if not sure:
+            break  # (in the rounding band around the root)
+        step = t - v / slope
+        if not (wl < step < wh):  # (outside the bracket, or a zero slope: halve)
+            step = 0.5 * (wl + wh)
+            if step <= wl or step >= wh:
+                break
+        t = step
+    # Points a little below and above the estimate t, where the sign is certain.
+    w0 = max(cert / abs(slope) if slope != 0.0 else 0.0, 4.0 * _ROUNDING * abs(t))
+    w = w0
+    q = t - w
+    for _ in range(200):
+        if q <= a:
+            break
+        v = _value(which, q, px, py, vx, vy, ax, ay, d2)[0]
+        if abs(v) > cert:
+            if (v < 0.0) == neg_lo:
+                a = q
+                break
+            b = min(b, q)  # (the root lies below q)
+        q -= w
+        w *= 2.0
+    w = w0
+    q = t + w
+    for _ in range(200):
+        if q >= b:
+            break
+        v = _value(which, q, px, py, vx, vy, ax, ay, d2)[0]
+        if abs(v) > cert:
+            if (v < 0.0) != neg_lo:
+                b = q
+                break
+            a = max(a, q)  # (the root lies above q)
+        q += w
+        w *= 2.0
+    # The bisection, its certain steps taken without an evaluation.
     for _ in range(2200):
         mid = 0.5 * (lo + hi)
         if mid <= lo or mid >= hi:
             break
-        if (_rate(mid, px, py, vx, vy, ax, ay) < 0.0) == neg_lo:
+        if mid <= a:
+            lo = mid
+        elif mid >= b:
+            hi = mid
+        elif (_value(which, mid, px, py, vx, vy, ax, ay, d2)[0] < 0.0) == neg_lo:
             lo = mid
         else:
             hi = mid
-    return lo
+    return lo, hi
 
 
 @njit
@@ -424,14 +530,7 @@ def _fall(lo, hi, flo, px, py, vx, vy, ax, ay, d2):
         return (lo, fhi) if fhi < flo else (INF, fhi)
     if fhi > 0.0:
         return INF, fhi
-    for _ in range(2200):
-        mid = 0.5 * (lo + hi)
-        if mid <= lo or mid >= hi:
-            break
-        if _gap(mid, px, py, vx, vy, ax, ay, d2)[0] > 0.0:
-            lo = mid
-        else:
-            hi = mid
+    lo, hi = _bisect(1, lo, hi, True, px, py, vx, vy, ax, ay, d2)
     f_lo = _gap(lo, px, py, vx, vy, ax, ay, d2)[0]
     f_hi = _gap(hi, px, py, vx, vy, ax, ay, d2)[0]
     return (lo if f_lo < -f_hi else hi), fhi

@@ -126,10 +126,12 @@ def physics_digest(sim):
     # Besides digest(): the whole state rows (with the supports under gravity), every
     # tally, and the model's per-disk state and random stream.
     h = hashlib.sha256(digest(sim).encode())
-    # (The first five counts; a count added later enters only where it is not 0.)
+    # (The first five counts and 14 accumulators; one added later enters only where
+    # it is not 0.)
     counts = np.asarray(sim._counts)
-    extra = [counts[5:]] if counts[5:].any() else []
-    for arr in (sim._S, sim._acc, sim._wacc, counts[:5], *extra):
+    acc = np.asarray(sim._acc)
+    extra = [a for a in (counts[5:], acc[14:]) if a.any()]
+    for arr in (sim._S, acc[:14], sim._wacc, counts[:5], *extra):
         h.update(np.ascontiguousarray(arr).tobytes())
     m = sim._model
     if m is not None:

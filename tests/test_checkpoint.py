@@ -213,3 +213,16 @@ def test_files_are_written_with_the_mode_the_umask_gives(tmp_path):
     finally:
         os.umask(old)
     assert list(tmp_path.glob(".*")) == []  # (no temporary file left behind)
+
+
+def test_a_state_saved_before_gravity_could_change_loads_with_no_work_of_gravity():
+    from edmd2d._engine import layout
+    from edmd2d._state import EngineState
+
+    sim = ed.make_gas(30, 0.2, periodic=False, gravity=(0.0, -1.0), seed=2).advance(until=1.0)
+    state = sim._state.__getstate__()
+    state["acc"] = state["acc"][:layout.A_GRAVITY]  # (the accumulators of older files)
+    loaded = EngineState.__new__(EngineState)
+    loaded.__setstate__(state)
+    assert len(loaded.acc) == layout.N_ACC and loaded.acc[layout.A_GRAVITY] == 0.0
+    assert np.array_equal(loaded.acc[:layout.A_GRAVITY], sim._state.acc[:layout.A_GRAVITY])

@@ -434,3 +434,17 @@ def test_an_elastic_disk_at_rest_on_a_peg_or_a_shelf_is_refused(peg):
     with pytest.raises(ValueError, match="rests on a wall segment or an immovable disk"):
         ed.Simulation(pos, [[0.0, 0.0], [0.0, 0.0]], 0.5, box=WALLED,
                       gravity=(0.0, -1.0), **kwargs)
+
+
+def test_changing_gravity_books_the_jump_of_the_potential_energy():
+    # Elastic: total energy less the work of the changes of gravity is constant.
+    sim = ed.make_gas(200, 0.2, periodic=(True, False), gravity=(0.0, -1.0), seed=3)
+    sim.advance(until=2.0)
+    e0 = sim.total_energy()
+    for g in [(0.5, -1.0), (0.0, -3.0), (-0.2, 0.7)]:
+        sim.set_gravity(g)
+        assert sim.total_energy() - sim.gravity_work() == pytest.approx(e0, rel=1e-12)
+        sim.advance(until=sim.time + 2.0)
+        assert np.array_equal(sim.gravity, g)
+    assert sim.total_energy() - sim.gravity_work() == pytest.approx(e0, rel=1e-10)
+    assert sim.dissipated_energy() == 0.0

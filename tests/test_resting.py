@@ -19,12 +19,12 @@ def books(sim, e0):
 
 def held_by_statics(sim, i, gap):
     """An independent check that resting disk ``i`` is held: the direction against
-    gravity lies strictly inside the cone of the normals of the static bodies within
+    the simulation's gravity lies strictly inside the cone of the normals of the static bodies within
     ``gap`` of it (resting disks, immovable disks, box walls), or one is a box wall
     whose normal points against gravity."""
     pos = sim.positions
     rad = sim.radii
-    up = -np.asarray(G) / np.hypot(*G)
+    up = -sim.gravity / np.hypot(*sim.gravity)
     normals = []
     for axis, inward in [(0, 1), (0, -1), (1, 1), (1, -1)]:
         c = pos[i, axis]
@@ -85,11 +85,11 @@ def balance_residuals(sim, gap, rows=None):
                 col = np.zeros(2 * len(rows))
                 col[2 * local[i]:2 * local[i] + 2] = d / np.hypot(*d)
                 columns.append(col)
-    weight = -np.tile(G, len(rows))  # (per unit mass)
+    weight = -np.tile(sim.gravity, len(rows))  # (per unit mass)
     matrix = np.array(columns).T / np.repeat(mass[rows], 2)[:, None]
     f, _ = nnls(matrix, weight, maxiter=50 * matrix.shape[1])
     residual = (matrix @ f - weight).reshape(-1, 2)
-    return np.hypot(residual[:, 0], residual[:, 1]) / np.hypot(*G)
+    return np.hypot(residual[:, 0], residual[:, 1]) / np.hypot(*sim.gravity)
 
 
 def assert_held(sim):
@@ -421,3 +421,77 @@ def test_a_disk_on_a_disk_on_the_floor_comes_to_rest_where_it_once_collapsed():
 def test_the_physics_module_lists_resting():
     assert physics.FAMILIES["resting"] is physics.Resting
     assert edmd2d.physics.KEYWORDS["rest_height"].kind == "length"
+
+
+def energy_books(sim):
+    """Kinetic + potential + dissipated energy less what changes of gravity gave."""
+    return sim.total_energy() + sim.dissipated_energy() - sim.gravity_work()
+
+
+def test_tilting_a_settled_bed_wakes_it_and_it_slides_down_the_new_slope():
+    sim = make_gas(60, 0.15, periodic=False, aspect=0.5, seed=4, **INELASTIC)
+    sim.advance(until=60.0)
+    assert sim.resting.all()
+    e0 = energy_books(sim)
+    wakes = sim.counts.wakes
+    centre = sim.positions[:, 0].mean()
+    potential = sim.potential_energy()
+    angle = np.radians(30.0)
+    tilted = (np.sin(angle), -np.cos(angle))  # towards +x
+    sim.set_gravity(tilted)
+    # At once: all awake, the same positions, the potential energy's jump booked.
+    assert not sim.resting.any()
+    assert sim.counts.wakes == wakes + 60
+    assert np.array_equal(sim.gravity, tilted)
+    jump = -np.sum(sim.masses[:, None] * sim.unwrapped_positions
+                   * (np.array(tilted) - np.array(G)))
+    assert sim.potential_energy() - potential == pytest.approx(jump, rel=1e-12)
+    assert sim.gravity_work() == pytest.approx(jump, rel=1e-12)
+    assert energy_books(sim) == pytest.approx(e0, abs=1e-12 * abs(e0))
+    sim.advance(until=200.0)
+    assert sim.resting.all()  # settled again against the right-hand wall
+    assert sim.positions[:, 0].mean() > centre + 1.0
+    assert energy_books(sim) == pytest.approx(e0, abs=1e-9 * abs(e0))
+    assert sim.families["resting"].speed == pytest.approx(np.sqrt(2.0 * 1.0 * 1e-3))
+    assert_held(sim)
+
+
+def test_heavier_gravity_follows_the_rest_criteria_and_the_books():
+    sim = make_gas(40, 0.15, periodic=False, aspect=0.5, seed=2, **INELASTIC)
+    sim.advance(until=10.0)
+    e0 = energy_books(sim)
+    sim.set_gravity((0.0, -4.0))
+    rest = sim.families["resting"]
+    assert rest.speed == pytest.approx(np.sqrt(2.0 * 4.0 * rest.height))
+    assert rest.press == pytest.approx(np.sqrt(4.0 * 4.0 * sim.radii.min()))
+    assert rest.every == pytest.approx(200.0 * rest.height / rest.speed)
+    twin = copy.deepcopy(sim)
+    sim.advance(until=40.0)
+    twin.advance(until=40.0)
+    assert np.array_equal(sim.positions, twin.positions)
+    assert energy_books(sim) == pytest.approx(e0, abs=1e-9 * abs(e0))
+
+
+@pytest.mark.parametrize("gravity, error, word", [
+    ((0.0, 0.0), ValueError, "zero"),
+    ((0.0, np.inf), ValueError, "gravity"),
+    ((1.0, 2.0, 3.0), ValueError, "gravity"),
+    ("down", TypeError, "gravity"),
+])
+def test_bad_gravity_is_refused_and_leaves_the_simulation_unchanged(gravity, error, word):
+    sim = make_gas(20, 0.15, periodic=False, seed=1, **INELASTIC).advance(until=5.0)
+    before = copy.deepcopy(sim)
+    with pytest.raises(error, match=word):
+        sim.set_gravity(gravity)
+    assert np.array_equal(sim.gravity, before.gravity)
+    assert np.array_equal(sim.resting, before.resting)
+    assert sim.gravity_work() == 0.0
+    sim.advance(until=10.0)
+    before.advance(until=10.0)
+    assert np.array_equal(sim.positions, before.positions)
+
+
+def test_a_simulation_without_gravity_cannot_be_given_it_later():
+    sim = make_gas(20, 0.15, seed=1)
+    with pytest.raises(ValueError, match="without gravity"):
+        sim.set_gravity((0.0, -1.0))

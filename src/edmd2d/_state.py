@@ -26,6 +26,7 @@ from ._engine import loop as _loop
 from ._engine import overlap as _overlap
 from ._engine import queue as _queue
 from ._engine import resting as _resting
+from ._sums import dot
 from ._validate import about, as_generator, indices_where
 from .geometry import BOX_WALL_EQUATIONS, MAX_LENGTH
 
@@ -237,6 +238,9 @@ class EngineState:
         state.setdefault("rest_supports", None)
         state.setdefault("rest_frozen", None)
         state.setdefault("rest_t_static", None)
+        acc = state["acc"]
+        if len(acc) < _layout.N_ACC:  # (saved before gravity could be changed)
+            state["acc"] = np.concatenate([acc, np.zeros(_layout.N_ACC - len(acc))])
         counts = state["counts"]
         if len(counts) < _layout.N_COUNTS:
             state["counts"] = np.concatenate(
@@ -370,6 +374,23 @@ class EngineState:
         self.S[:, _layout.VX:_layout.VY + 1] = vel[self.order]
         _layout.support_view(self.S)[:] = rest[self.order]
         self.predict_all()  # every event and kept candidate is recomputed
+
+    def set_gravity(self, gravity: np.ndarray, rest: np.ndarray, families: dict) -> None:
+        """Change gravity to ``gravity`` (checked, not zero) at the current time, with
+        the box walls ``rest`` that disks now rest on (user order) and the physics
+        ``families`` that depend on it: every disk at rest wakes, and the change of
+        the potential energy is booked (``A_GRAVITY``)."""
+        self.wake_all()
+        self.sync_all()  # (under the old gravity)
+        movable = self.invm > 0
+        r = self.unwrapped()[movable]
+        self.acc[_layout.A_GRAVITY] -= float(dot(self.mass[movable],
+                                                 dot(r, gravity - self.gravity)))
+        self.gravity = np.array(gravity, np.float64)
+        self.families = families
+        _layout.support_view(self.S)[:] = rest[self.order]
+        self.rest_check = self.first_rest_check()
+        self.predict_all()
 
     def sync_all(self) -> None:
         """Move every stored position to the current time (local clocks all equal)."""

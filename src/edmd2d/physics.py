@@ -797,9 +797,23 @@ class Resting(Family):
             return None
         if resting is None and not system.inelastic:
             return None
-        g = float(np.hypot(*system.gravity))
-        v = float(np.sqrt(2.0 * g * h))
-        return cls(h, v, h, v, float(np.sqrt(4.0 * g * system.radii.min())), 0.1 * v)
+        return cls.of(h, float(np.hypot(*system.gravity)), float(system.radii.min()))
+
+    @classmethod
+    def of(cls, height: float, g: float, radius: float) -> Resting:
+        """The criteria of length ``height`` under gravity of magnitude ``g > 0``, for
+        disks whose smallest radius is ``radius``.
+
+        Parameters
+        ----------
+        height, g, radius : float
+
+        Returns
+        -------
+        Resting
+        """
+        v = float(np.sqrt(2.0 * g * height))
+        return cls(height, v, height, v, float(np.sqrt(4.0 * g * radius)), 0.1 * v)
 
     @property
     def every(self) -> float:

@@ -210,7 +210,8 @@ A_VIRIAL_YY = 7
 A_DISSIPATED = 8
 A_HEAT_BOX = 9  # 9..12
 A_THERMOSTAT = 13
-N_ACC = 14
+A_GRAVITY = 14  # potential energy given by changes of gravity (Python side only)
+N_ACC = 15
 
 # Per-segment tallies (wacc[k, ...], one row per wall segment k, beside acc[A_SEGMENTS],
 # their total): the impulse vector the segment received, the sum of -J n over its

@@ -13,8 +13,8 @@ import math
 from .._jit import njit
 
 INF = math.inf
-# The factor of the rounding-error bounds of :func:`_bisect`: 16 unit roundoffs, twice
-# the nine that the longest chain of roundings there can add up to.
+# The factor of the rounding-error bounds of :func:`_bisect`: 16 unit roundoffs, more
+# than the chains of roundings there add up to (8 for ``s``, 11 for ``f``).
 _ROUNDING = 8.0 * 2.0**-52
 
 

@@ -413,3 +413,16 @@ def test_neighbour_counts_agree_with_freud():
 
 def test_doctests():
     assert doctest.testmod(contacts, raise_on_error=False).failed == 0
+
+
+def test_an_open_wall_segment_is_in_no_contact():
+    box = ed.Box(10.0, 10.0, periodic=False)
+    walls = [ed.Wall((0.0, 2.0), (10.0, 2.0)), ed.Wall((0.0, 6.0), (10.0, 6.0))]
+    pos = [[3.0, 2.5], [6.0, 6.5]]  # each touching one shelf from above
+    with pytest.warns(UserWarning, match="rattler"):  # (two lone disks: no backbone)
+        closed = contacts.contact_network(ed.Simulation(pos, [[0, 0]] * 2, 0.5, box=box,
+                                                        walls=walls), tol=1e-9)
+    assert closed.wall_contacts.tolist() == [[0, 0], [1, 1]]
+    sim = ed.Simulation(pos, [[0, 0]] * 2, 0.5, box=box, walls=walls, open_walls=[1])
+    with pytest.warns(UserWarning, match="rattler"):
+        assert contacts.contact_network(sim, tol=1e-9).wall_contacts.tolist() == [[0, 0]]

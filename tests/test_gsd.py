@@ -255,3 +255,20 @@ def test_frames_say_which_disks_are_at_rest(tmp_path):
     gsd.record(mixed_channel(), tmp_path / "gas.gsd", [1.0])
     with hoomd.open(str(tmp_path / "gas.gsd"), "r") as traj:
         assert "particles/edmd2d/resting" not in traj[0].log
+
+
+def test_an_open_gate_is_logged_and_read_back_with_a_disk_passing_through_it(tmp_path):
+    # Two disks fall through an open gate (wall segment 1) across the box; a frame
+    # taken as they straddle it reads back with the gate open.
+    box = ed.Box(6.0, 10.0, periodic=False)
+    walls = [ed.Wall((0.0, 2.0), (1.0, 1.0)), ed.Wall((0.0, 5.0), (6.0, 5.0))]
+    sim = ed.Simulation([[2.0, 5.6], [4.0, 5.6]], [[0.0, 0.0], [0.0, -0.5]], 0.5, box=box,
+                        walls=walls, open_walls=[1], gravity=(0.0, -1.0))
+    path = tmp_path / "gate.gsd"
+    gsd.record(sim, path, [0.6])
+    assert (np.abs(sim.positions[:, 1] - 5.0) < 0.5).all()  # in the gate's line
+    with hoomd.open(str(path), "r") as traj:
+        assert traj[0].log["edmd2d/open_walls"].tolist() == [0, 1]
+    again = gsd.read(path)
+    assert again.open_walls.tolist() == [False, True]
+    np.testing.assert_allclose(again.positions, sim.positions, atol=1e-5)

@@ -495,3 +495,57 @@ def test_a_simulation_without_gravity_cannot_be_given_it_later():
     sim = make_gas(20, 0.15, seed=1)
     with pytest.raises(ValueError, match="without gravity"):
         sim.set_gravity((0.0, -1.0))
+
+
+def shelf_bed(n=8):
+    """``n`` disks settled on a shelf (wall segment 0) across a walled box at
+    mid-height, above its floor."""
+    x = 0.6 + np.arange(n) * 1.1
+    pos = np.column_stack([x, np.full(n, 5.6)])
+    sim = Simulation(pos, np.zeros((n, 2)), 0.5, box=Box(n * 1.1 + 0.2, 10.0, periodic=False),
+                     walls=[edmd2d.Wall((0.0, 5.0), (n * 1.1 + 0.2, 5.0))], **INELASTIC)
+    sim.advance(until=20.0)
+    assert sim.resting.all()
+    return sim
+
+
+def test_opening_a_shelf_drops_its_bed_to_the_floor_where_it_settles_again():
+    sim = shelf_bed()
+    e0 = energy_books(sim)
+    assert not sim.open_walls.any()
+    sim.open_wall(0)
+    assert sim.open_walls.tolist() == [True]
+    assert not sim.resting.any()  # woken
+    sim.advance(until=100.0)
+    assert sim.resting.all()
+    assert (sim.positions[:, 1] < 1.0).all()  # on the floor
+    assert energy_books(sim) == pytest.approx(e0, abs=1e-9 * abs(e0))
+    assert_held(sim)
+    sim.close_wall(0)  # nothing overlaps it: closed again, the bed undisturbed
+    events = sim.counts.events
+    sim.advance(until=200.0)
+    assert sim.counts.events == events and not sim.open_walls.any()
+
+
+def test_a_shelf_cannot_close_on_a_disk_passing_through_it():
+    sim = shelf_bed()
+    sim.open_wall(0)
+    sim.advance(until=sim.time + np.sqrt(2 * 0.6) - 0.05)  # the disks straddle y = 5
+    assert (np.abs(sim.positions[:, 1] - 5.0) < 0.5).all()
+    twin = copy.deepcopy(sim)
+    with pytest.raises(ValueError, match=r"disks \[0, 1, 2"):
+        sim.close_wall(0)
+    assert sim.open_walls[0]
+    sim.advance(until=60.0)
+    twin.advance(until=60.0)
+    assert np.array_equal(sim.positions, twin.positions)
+
+
+@pytest.mark.parametrize("k, error", [(1, ValueError), (-1, ValueError), (0.5, TypeError),
+                                      ("0", TypeError)])
+def test_a_wall_index_that_names_no_segment_is_refused(k, error):
+    sim = shelf_bed(3)
+    with pytest.raises(error, match="k must"):
+        sim.open_wall(k)
+    with pytest.raises(error, match="k must"):
+        sim.close_wall(k)

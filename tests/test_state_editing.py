@@ -149,3 +149,72 @@ def test_a_run_the_clock_cannot_resolve_is_refused():
     fast = ed.Simulation([[5.0, 5.0], [15.0, 15.0]], [[1e12, 3.0], [0.0, 1.0]], 0.5, box=box)
     fast.advance(until=1e-5)
     assert fast.counts.cell_crossings > 5e5
+
+
+def test_opening_a_partition_lets_a_gas_fill_the_box_uniformly():
+    """Free expansion: an elastic gas in the left half of a walled box, a partition
+    (wall segment 0) down the middle.  Opened, the gas fills the box; the fraction of
+    disks in the right half, averaged over 40 well separated times, is 1/2 to within
+    its statistics (binomial: sd sqrt(1/4N) = 0.025 per time for N = 100, so 0.004 for
+    the mean of 40 nearly independent ones; 0.03 allows for their correlation)."""
+    import edmd2d as ed
+
+    rng = np.random.default_rng(5)
+    pos = np.array([(x, y) for x in np.arange(0.7, 9.5, 1.25)
+                    for y in np.arange(0.7, 19.5, 1.4)])[:100]
+    vel = rng.normal(size=(100, 2))
+    sim = ed.Simulation(pos, vel, 0.5, box=ed.Box(20.0, 20.0, periodic=False),
+                        walls=[ed.Wall((10.0, 0.0), (10.0, 20.0))])
+    e0 = sim.total_energy()
+    sim.advance(until=20.0)
+    assert (sim.positions[:, 0] < 10.0).all()  # held in the left half
+    sim.open_wall(0)
+    sim.advance(until=100.0)  # (a disk crosses the box in about 20)
+    right = []
+    for k in range(40):
+        sim.advance(until=100.0 + 10.0 * (k + 1))
+        right.append(float((sim.positions[:, 0] > 10.0).mean()))
+    assert np.mean(right) == pytest.approx(0.5, abs=0.03)
+    assert sim.total_energy() == pytest.approx(e0, rel=1e-12)
+    assert sim.wall_heat().shape == (5,)  # the open segment keeps its place
+
+
+def test_open_walls_survive_a_checkpoint(tmp_path):
+    import edmd2d as ed
+    from edmd2d import checkpoint
+
+    sim = ed.Simulation([[2.0, 2.0], [5.0, 5.0], [3.0, 7.0]],
+                        [[1.0, 0.3], [-0.4, 1.0], [0.2, -0.9]], 0.5,
+                        box=ed.Box(10.0, 10.0, periodic=False),
+                        walls=[ed.Wall((6.0, 1.0), (9.0, 4.0)), ed.Wall((8.0, 0.0), (8.0, 10.0))])
+    sim.open_wall(1)
+    checkpoint.save(sim, tmp_path / "open.edmd2d")
+    again = checkpoint.load(tmp_path / "open.edmd2d")
+    assert again.open_walls.tolist() == [False, True]
+    again.advance(until=5.0)
+    sim.advance(until=5.0)
+    assert np.array_equal(again.positions, sim.positions)
+
+
+@pytest.mark.parametrize("open_walls, error", [([2], ValueError), ([-1], ValueError),
+                                               (1, TypeError), ("0", TypeError),
+                                               ([0.5], TypeError)])
+def test_bad_open_walls_are_refused_by_name(open_walls, error):
+    import edmd2d as ed
+
+    with pytest.raises(error, match="open_walls"):
+        ed.Simulation([[2.0, 2.0]], [[1.0, 0.0]], 0.5, box=ed.Box(10.0, 10.0, periodic=False),
+                      walls=[ed.Wall((5.0, 0.0), (5.0, 10.0)), ed.Wall((8.0, 1.0), (9.0, 2.0))],
+                      open_walls=open_walls)
+
+
+def test_a_disk_may_start_on_an_open_wall():
+    import edmd2d as ed
+
+    sim = ed.Simulation([[5.0, 2.0]], [[1.0, 0.0]], 0.5, box=ed.Box(10.0, 10.0, periodic=False),
+                        walls=[ed.Wall((5.0, 0.0), (5.0, 10.0))], open_walls=[0])
+    sim.advance(until=2.0)
+    assert sim.positions[0, 0] == pytest.approx(7.0)
+    with pytest.raises(ValueError, match="overlap"):
+        ed.Simulation([[5.0, 2.0]], [[1.0, 0.0]], 0.5, box=ed.Box(10.0, 10.0, periodic=False),
+                      walls=[ed.Wall((5.0, 0.0), (5.0, 10.0))])

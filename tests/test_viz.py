@@ -124,6 +124,16 @@ def test_walls_and_box_edges_drawn():
     assert ax.get_xlim()[0] < 0 < 10 < ax.get_xlim()[1]
 
 
+def test_open_walls_drawn_faint_and_dashed():
+    sim = walled_with_walls()
+    sim.open_wall(2)
+    walls = by_gid(viz.draw(sim, color_by=None), "edmd2d-walls")
+    dashed = [dashes is not None for _, dashes in walls.get_linestyles()]
+    assert dashed == [False, False, True, False]
+    alpha = walls.get_colors()[:, 3]
+    assert alpha[2] < 0.5 and (alpha[[0, 1, 3]] == 1.0).all()
+
+
 def test_periodic_edges_dashed_walled_solid():
     sim = ed.Simulation([[5.0, 5.0]], [[1.0, 0.0]], radii=0.5,
                         box=ed.Box(10.0, 8.0, periodic=(True, False)))

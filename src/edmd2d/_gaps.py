@@ -92,6 +92,8 @@ def _candidates(pos, rad, box: Box, ends, reach: float) -> _Candidates:
 
     sdisk, sidx, sgap, svec = [], [], [], []
     for k, (a, b) in enumerate(ends):
+        if not (np.isfinite(a).all() and np.isfinite(b).all()):
+            continue  # (an open segment, left out by the caller: no contact)
         half = 0.5 * float(np.hypot(*(b - a)))
         near = np.asarray(tree.query_ball_point(0.5 * (a + b), half + rmax * (1.0 + 2.0 * reach)
                                                 * (1.0 + 1e-12)), dtype=np.int64)

@@ -399,11 +399,12 @@ class Snapshot:
     species : ndarray of int, shape (N,)
     box : Box
     walls : tuple of Wall
+    open_walls : ndarray of bool, shape (S,)
     counts : Counts
     """
 
     __slots__ = ("time", "positions", "unwrapped_positions", "velocities", "radii",
-                 "masses", "species", "box", "walls", "counts")
+                 "masses", "species", "box", "walls", "open_walls", "counts")
 
     def __init__(self, sim: Simulation) -> None:
         self.time = sim.time
@@ -415,6 +416,7 @@ class Snapshot:
         self.species = sim.species
         self.box = sim.box
         self.walls = sim.walls
+        self.open_walls = sim.open_walls
         self.counts = sim.counts
 
     def __len__(self) -> int:

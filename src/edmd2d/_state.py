@@ -128,7 +128,7 @@ class EngineState:
     recorded: list[np.ndarray]
 
     def __init__(self, box, walls, pos, vel, rad, mass, time, *, species, model, gravity,
-                 growth, cell_size, families) -> None:
+                 growth, cell_size, families, wall_open=None) -> None:
         n = len(pos)
         self.box = box
         self.walls = tuple(walls)
@@ -161,6 +161,10 @@ class EngineState:
             self.wb = np.zeros((0, 2))
         # Each segment's impulses and contacts (layout.W_*), summed by the engine.
         self.wacc = np.zeros((len(self.walls), _layout.N_WACC))
+        # Open segments (an outlet's gate opened): kept, with their tallies, but listed
+        # in no cell, so that no disk meets them.
+        self.wall_open = (np.zeros(len(self.walls), bool) if wall_open is None
+                          else np.array(wall_open, bool))
         self.cell_size = cell_size
         self.growth = None if growth is None else np.array([growth.rate, self.time])
         self.build_grid(pos, self.grid_diameter(2.0 * float(rad.max())), cell_size)
@@ -238,6 +242,7 @@ class EngineState:
         state.setdefault("rest_supports", None)
         state.setdefault("rest_frozen", None)
         state.setdefault("rest_t_static", None)
+        state.setdefault("wall_open", np.zeros(len(state["walls"]), bool))
         acc = state["acc"]
         if len(acc) < _layout.N_ACC:  # (saved before gravity could be changed)
             state["acc"] = np.concatenate([acc, np.zeros(_layout.N_ACC - len(acc))])
@@ -276,9 +281,19 @@ class EngineState:
         _grid.build_cells(pos, self.gi, self.gf, self.E[:, _layout.CELL], self.head,
                           self.nxt, self.prv)
         reach = 0.5 * dmax + _CELL_MARGIN * (side + dmax)
-        self.wstart, self.wwall, self.wsx, self.wsy = _grid.bucket_walls(
-            self.wa, self.wb, self.gi, self.gf, reach
-        )
+        closed = np.flatnonzero(~self.wall_open)
+        if len(closed) == len(self.wa):
+            self.wstart, self.wwall, self.wsx, self.wsy = _grid.bucket_walls(
+                self.wa, self.wb, self.gi, self.gf, reach)
+        else:
+            # The closed segments alone, listed under their own indices (with every
+            # segment open, still one empty list per cell: the engine looks them up
+            # wherever there are segments).
+            start, wall, sx, sy = _grid.bucket_walls(self.wa[closed], self.wb[closed],
+                                                     self.gi, self.gf, reach)
+            if len(closed) == 0:
+                start = np.zeros(ncx * ncy + 1, np.int32)
+            self.wstart, self.wwall, self.wsx, self.wsy = start, closed[wall], sx, sy
 
     def check_overlaps(self, pos: np.ndarray, rad: np.ndarray) -> None:
         """Refuse disks (at ``pos``, in row order, on the grid) that overlap each
@@ -374,6 +389,15 @@ class EngineState:
         self.S[:, _layout.VX:_layout.VY + 1] = vel[self.order]
         _layout.support_view(self.S)[:] = rest[self.order]
         self.predict_all()  # every event and kept candidate is recomputed
+
+    def set_wall_open(self, k: int, is_open: bool) -> None:
+        """Open wall segment ``k`` (no disk meets it any more; every disk at rest
+        wakes, since it may have held some) or close it again (checked by the caller:
+        no disk overlaps it), and predict every disk afresh."""
+        if is_open:
+            self.wake_all()
+        self.wall_open[k] = is_open
+        self.regrid()
 
     def set_gravity(self, gravity: np.ndarray, rest: np.ndarray, families: dict) -> None:
         """Change gravity to ``gravity`` (checked, not zero) at the current time, with
@@ -564,6 +588,7 @@ class EngineState:
         cold = np.ones(4 + len(self.wa), bool)
         if families.heated is not None:
             cold = families.heated.kt <= 0.0
+        cold[4:] &= ~self.wall_open  # (an open segment holds nothing)
         vel = self.velocities()
         support = _layout.support_view(self.S)
         static = (support & _layout.RESTING != 0) | (

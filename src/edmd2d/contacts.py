@@ -380,6 +380,8 @@ def _inputs(source, box, radii, walls):
         segs = tuple(as_walls(walls))
     pos = _wrap(np.ascontiguousarray(pos, dtype=np.float64), box)
     ends = np.array([[w.start, w.end] for w in segs], dtype=np.float64).reshape(-1, 2, 2)
+    if isinstance(source, Simulation):
+        ends[source.open_walls] = np.nan  # (an open segment touches nothing)
     return pos, np.asarray(rad, dtype=np.float64), box, ends
 
 

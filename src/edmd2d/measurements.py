@@ -632,7 +632,8 @@ def container_area(sim: Simulation) -> float:
 
 def _container(sim) -> tuple[float, str]:
     """``(area, source)`` of :func:`container_area` (see :func:`edmd2d.geometry.container`)."""
-    return container(sim.box, sim.walls, sim.positions[np.isfinite(sim.masses)])
+    closed = [w for w, is_open in zip(sim.walls, sim.open_walls) if not is_open]
+    return container(sim.box, closed, sim.positions[np.isfinite(sim.masses)])
 
 
 @dataclass(frozen=True)

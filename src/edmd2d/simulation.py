@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from . import _checks, _operations, _state
+from . import _checks, _gaps, _operations, _state
 from . import measurements as _measurements
 from . import models as _models
 from . import physics as _physics
@@ -93,6 +93,9 @@ class Simulation(SimulationBase):
         The container.  A periodic axis must be at least one largest diameter long.
     walls : iterable of Wall, optional
         Extra wall segments inside the box.
+    open_walls : iterable of int, optional
+        The indices of the segments that start open (see :meth:`open_wall`): a
+        gate to close later.
     time : float, default 0.0
         The clock at the given state.
     cell_size : float, optional
@@ -196,6 +199,7 @@ class Simulation(SimulationBase):
         box: Box | None = None,
         walls: Iterable[Wall] = (),
         *,
+        open_walls: Iterable[int] = (),
         time: float = 0.0,
         cell_size: float | None = None,
         species: ArrayLike | None = None,
@@ -234,6 +238,17 @@ class Simulation(SimulationBase):
         t0 = as_float_array("time", time, ())
         with about("species"):
             spec = _models.as_species(species, n)
+        with about("open_walls"):
+            wall_open = np.zeros(len(wall_list), bool)
+            if isinstance(open_walls, (str, bytes)) or not isinstance(open_walls, Iterable):
+                raise TypeError(f"open_walls must be an iterable of segment indices, "
+                                f"got {open_walls!r}")
+            for k in open_walls:
+                k = as_count("open_walls", k)
+                if k >= len(wall_list):
+                    raise ValueError(f"open_walls must name wall segments (0 to "
+                                     f"{len(wall_list) - 1}), got {k}")
+                wall_open[k] = True
         system = _physics.System(box, len(wall_list), rad, vel, mass, spec, float(t0))
         gravity_family = _physics.Gravity.check(system, gravity=gravity)
         g = None if gravity_family is None else gravity_family.g
@@ -258,7 +273,8 @@ class Simulation(SimulationBase):
         self._state = _state.EngineState(
             box, wall_list, pos, vel, rad, mass, float(t0),
             species=None if species is None else spec, model=model, gravity=g,
-            growth=growth_family, cell_size=cell_size, families=families)
+            growth=growth_family, cell_size=cell_size, families=families,
+            wall_open=wall_open)
 
     def __len__(self) -> int:
         """The number of disks."""
@@ -364,6 +380,78 @@ class Simulation(SimulationBase):
     def walls(self) -> tuple[Wall, ...]:
         """The wall segments."""
         return self._state.walls
+
+    @property
+    def open_walls(self) -> np.ndarray:
+        """Which wall segments are open (:meth:`open_wall`), shape (S,), a read-only
+        copy."""
+        out = self._state.wall_open.copy()
+        out.flags.writeable = False
+        return out
+
+    def open_wall(self, k: int) -> None:
+        """Open wall segment ``k`` at the current time: disks pass through it as if it
+        were not there (a silo's outlet opening under a filled bed).
+
+        Parameters
+        ----------
+        k : int
+            The segment's index in :attr:`walls`.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For an index that is not an integer or names no segment; the
+            simulation is then left unchanged.
+
+        Notes
+        -----
+        The segment keeps its index, its tallies (:meth:`wall_heat`, the forces of
+        :func:`edmd2d.measurements.measure`) and its settings, and
+        :meth:`close_wall` closes it again.  Every disk at rest wakes (the segment
+        may have held some; the others settle again at once), and every event is
+        predicted afresh.  Opening an open segment changes nothing.
+        """
+        k = self._wall_index(k)
+        if not self._state.wall_open[k]:
+            self._state.set_wall_open(k, True)
+
+    def close_wall(self, k: int) -> None:
+        """Close wall segment ``k`` again (see :meth:`open_wall`) at the current time.
+
+        Parameters
+        ----------
+        k : int
+            The segment's index in :attr:`walls`.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For an index that is not an integer or names no segment, or for disks
+            that overlap the segment (they would be inside a wall): the simulation is
+            then left unchanged.
+        """
+        k = self._wall_index(k)
+        state = self._state
+        if not state.wall_open[k]:
+            return
+        wall = state.walls[k]
+        dist = _gaps._segment_distance(self.positions, np.asarray(wall.start, np.float64),
+                                       np.asarray(wall.end, np.float64), state.box)
+        rad = self.radii
+        inside = dist < rad * (1.0 - _checks.OVERLAP_TOL)
+        if inside.any():
+            raise ValueError(f"close_wall({k}): disks {indices_where(inside)} overlap "
+                             f"walls[{k}]; close it when they have left it")
+        state.set_wall_open(k, False)
+
+    def _wall_index(self, k: int) -> int:
+        """``k`` checked as the index of a wall segment."""
+        k = as_count("k", k)
+        if k >= len(self._state.walls):
+            raise ValueError(f"k must name a wall segment (0 to "
+                             f"{len(self._state.walls) - 1}), got {k}")
+        return k
 
     @property
     def counts(self) -> Counts:

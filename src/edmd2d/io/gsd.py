@@ -20,7 +20,8 @@ What a frame holds (HOOMD conventions):
 - ``log/edmd2d/...``: what the schema has no place for, so that nothing is lost: the
   ``time``; the box's ``W, H`` in float64 (``box``); the ``periodic`` flags of the two
   axes (1 periodic, 0 walled); the wall segments ``walls`` as rows
-  ``(x0, y0, x1, y1)`` in the frame's centred coordinates;
+  ``(x0, y0, x1, y1)`` in the frame's centred coordinates, and ``open_walls`` (1 for
+  each segment open, ``Simulation.open_wall``);
   ``gravity``; ``<family>/<keyword>`` for each physics family registered with
   :func:`edmd2d.physics.register` that the simulation has (which :func:`read` passes
   back); ``immovable`` (1 for disks of infinite mass); the counts
@@ -190,6 +191,7 @@ def _frame(sim, writer: Writer):
         "edmd2d/box": np.array([width, height]),  # (float64: the box above is float32)
         "edmd2d/periodic": np.array(box.periodic, np.uint8),
         "edmd2d/walls": walls,
+        "edmd2d/open_walls": np.asarray(sim.open_walls, np.uint8),
         "edmd2d/gravity": np.asarray(sim.gravity, np.float64),
         "edmd2d/immovable": (~np.isfinite(masses)).astype(np.uint8),
         "edmd2d/collisions": np.array([counts.collisions], np.int64),
@@ -321,8 +323,9 @@ def read(path: str | os.PathLike[str], frame: int = -1, *, radius_scale: float =
              for row in log.get("edmd2d/walls", np.zeros((0, 4))).reshape(-1, 4)]
     time = float(log["edmd2d/time"][0]) if "edmd2d/time" in log else 0.0
     try:
-        return Simulation(pos, vel, radius, mass, box=box, walls=walls, time=time,
-                          **physics)
+        open_walls = np.flatnonzero(log.get("edmd2d/open_walls", np.zeros(0, np.uint8)))
+        return Simulation(pos, vel, radius, mass, box=box, walls=walls,
+                          open_walls=open_walls.tolist(), time=time, **physics)
     except ValueError as error:
         if "overlap" not in str(error):
             raise

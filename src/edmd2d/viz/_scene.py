@@ -226,6 +226,9 @@ class _Scene:
         )
         self.walls.set_gid("edmd2d-walls")
         ax.add_collection(self.walls, autolim=False)
+        self._wall_rgba = np.array(mcolors.to_rgba(wall_color))
+        self._walls_open = None
+        self._style_open_walls()
 
         if colorbar and sized_here:
             _colorbar_beside(ax, self.disks, self._color.label, (w + 2 * pad, h + 2 * pad),
@@ -273,6 +276,8 @@ class _Scene:
         self.disks.set_heights(diam)
         self._color.apply(self.disks, sim, idx)
         changed: list[Artist] = [self.disks]
+        if self._style_open_walls():
+            changed.append(self.walls)
         if self.trails is not None:
             self._update_trails(pos)
             changed.append(self.trails)
@@ -281,6 +286,20 @@ class _Scene:
                 f"t = {sim.time:.2f}{self._label_sep}collisions {sim.counts.collisions:,}")
             changed.append(self.text)
         return changed
+
+    def _style_open_walls(self) -> bool:
+        """Draw the open wall segments (``Simulation.open_walls``) faint and dashed;
+        returns whether their style changed."""
+        is_open = getattr(self.sim, "open_walls", None)
+        if is_open is None or len(is_open) == 0 or (
+                self._walls_open is not None and np.array_equal(is_open, self._walls_open)):
+            return False
+        self._walls_open = np.array(is_open)
+        colors = np.tile(self._wall_rgba, (len(is_open), 1))
+        colors[is_open, 3] *= 0.3
+        self.walls.set_colors(colors)
+        self.walls.set_linestyles([(0, (3, 3)) if o else "solid" for o in is_open])
+        return True
 
     def _update_trails(self, pos: np.ndarray) -> None:
         assert self.trails is not None  # (called only where there are trails)

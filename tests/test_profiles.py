@@ -208,3 +208,38 @@ def test_bed_refuses_what_is_not_a_bed():
     assert b.disks == 0 and math.isnan(b.height) and math.isnan(b.packing_fraction)
     with pytest.raises(ValueError, match="skin"):
         measurements.bed(falling, skin=-1.0)
+
+
+def test_discharge_of_free_flights_is_their_net_speed_over_the_period():
+    # Three disks flying through a box periodic in y: each crosses a line across it
+    # |v_y| / H times per unit time, so the net rate is -(sum v_y) / H exactly.
+    box = ed.Box(6.0, 10.0, periodic=True)
+    vel = [[0.3, -2.0], [0.0, -1.0], [-0.1, 0.5]]
+    sim = ed.Simulation([[1.0, 2.0], [3.0, 5.0], [5.0, 8.0]], vel, 0.4, box=box)
+    flow = measurements.discharge(sim, 25.0, blocks=5)
+    assert flow.rate == pytest.approx(2.5 / 10.0, rel=1e-12)
+    assert flow.block_rates == pytest.approx([0.25] * 5, rel=1e-12)
+    assert flow.error == pytest.approx(0.0, abs=1e-12)
+    assert sim.time == 25.0 and flow.duration == 25.0 and flow.axis == 1
+    sideways = measurements.discharge(sim, 10.0, axis=0)
+    assert sideways.rate == pytest.approx(-0.2 / 6.0, rel=1e-12)
+
+
+@pytest.mark.parametrize("kwargs, error, word", [
+    (dict(duration=0.0), ValueError, "duration"),
+    (dict(duration=5.0, blocks=1), ValueError, "blocks"),
+    (dict(duration=5.0, axis=2), ValueError, "axis"),
+    (dict(duration=5.0, axis=True), ValueError, "axis"),
+])
+def test_bad_discharge_arguments_are_refused(kwargs, error, word):
+    sim = ed.Simulation([[1.0, 2.0]], [[0.0, -1.0]], 0.4, box=ed.Box(6.0, 10.0))
+    with pytest.raises(error, match=word):
+        measurements.discharge(sim, **kwargs)
+    assert sim.time == 0.0
+
+
+def test_discharge_needs_a_periodic_axis():
+    sim = ed.Simulation([[1.0, 2.0]], [[0.0, -1.0]], 0.4,
+                        box=ed.Box(6.0, 10.0, periodic=(True, False)))
+    with pytest.raises(ValueError, match="not periodic along axis 1"):
+        measurements.discharge(sim, 5.0)

@@ -19,9 +19,9 @@ def books(sim, e0):
 
 def held_by_statics(sim, i, gap):
     """An independent check that resting disk ``i`` is held: the direction against
-    the simulation's gravity lies strictly inside the cone of the normals of the static bodies within
-    ``gap`` of it (resting disks, immovable disks, box walls), or one is a box wall
-    whose normal points against gravity."""
+    the simulation's gravity lies strictly inside the cone of the normals of the
+    static bodies within ``gap`` of it (resting disks, immovable disks, box walls), or
+    one is a box wall whose normal points against gravity."""
     pos = sim.positions
     rad = sim.radii
     up = -sim.gravity / np.hypot(*sim.gravity)

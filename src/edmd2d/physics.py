@@ -685,9 +685,9 @@ class Resting(Family):
     pushes it into the cone of their normals), when a support of its wakes (a cascade
     upwards), when the thermostat redraws its velocity, or when the velocities,
     positions, gravity or walls are set.  A softer impact bounces off it as off a fixed
-    body: the bed below it is taken as rigid, and takes the momentum, as a wall does.  A bounce on a box wall that
-    gravity presses a disk into, slower than ``speed``, leaves it sliding along
-    the wall.
+    body: the bed below it is taken as rigid, and takes the momentum, as a wall does.
+    A bounce on a box wall that gravity presses a disk into, slower than ``speed``,
+    leaves it sliding along the wall.
 
     Disks can also hold one another up (an arch: two disks side by side, each leaning
     on a peg outside it), which the test of each disk's static supports cannot see.

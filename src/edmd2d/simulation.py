@@ -243,8 +243,8 @@ class Simulation(SimulationBase):
             if isinstance(open_walls, (str, bytes)) or not isinstance(open_walls, Iterable):
                 raise TypeError(f"open_walls must be an iterable of segment indices, "
                                 f"got {open_walls!r}")
-            for k in open_walls:
-                k = as_count("open_walls", k)
+            for index in open_walls:
+                k = as_count("open_walls", index)
                 if k >= len(wall_list):
                     raise ValueError(f"open_walls must name wall segments (0 to "
                                      f"{len(wall_list) - 1}), got {k}")

@@ -227,7 +227,7 @@ class _Scene:
         self.walls.set_gid("edmd2d-walls")
         ax.add_collection(self.walls, autolim=False)
         self._wall_rgba = np.array(mcolors.to_rgba(wall_color))
-        self._walls_open = None
+        self._walls_open: np.ndarray | None = None
         self._style_open_walls()
 
         if colorbar and sized_here:
@@ -297,8 +297,8 @@ class _Scene:
         self._walls_open = np.array(is_open)
         colors = np.tile(self._wall_rgba, (len(is_open), 1))
         colors[is_open, 3] *= 0.3
-        self.walls.set_colors(colors)
-        self.walls.set_linestyles([(0, (3, 3)) if o else "solid" for o in is_open])
+        self.walls.set_color(colors)  # type: ignore[arg-type]  # (RGBA rows)
+        self.walls.set_linestyle([(0, (3, 3)) if o else "solid" for o in is_open])
         return True
 
     def _update_trails(self, pos: np.ndarray) -> None:

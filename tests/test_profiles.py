@@ -230,6 +230,7 @@ def test_discharge_of_free_flights_is_their_net_speed_over_the_period():
     (dict(duration=5.0, blocks=1), ValueError, "blocks"),
     (dict(duration=5.0, axis=2), ValueError, "axis"),
     (dict(duration=5.0, axis=True), ValueError, "axis"),
+    (dict(duration=5.0, axis=1.0), ValueError, "axis"),
 ])
 def test_bad_discharge_arguments_are_refused(kwargs, error, word):
     sim = ed.Simulation([[1.0, 2.0]], [[0.0, -1.0]], 0.4, box=ed.Box(6.0, 10.0))

@@ -218,3 +218,22 @@ def test_a_disk_may_start_on_an_open_wall():
     with pytest.raises(ValueError, match="overlap"):
         ed.Simulation([[5.0, 2.0]], [[1.0, 0.0]], 0.5, box=ed.Box(10.0, 10.0, periodic=False),
                       walls=[ed.Wall((5.0, 0.0), (5.0, 10.0))])
+
+
+def test_an_open_wall_is_no_obstacle_to_set_positions_or_to_a_disk_at_rest_on_it():
+    import edmd2d as ed
+
+    box, wall = ed.Box(10.0, 10.0, periodic=False), ed.Wall((0.0, 5.0), (10.0, 5.0))
+    sim = ed.Simulation([[2.0, 5.0], [7.0, 2.0]], [[0.1, 0.0], [0.0, 0.3]], 0.5, box=box,
+                        walls=[wall], open_walls=[0])
+    sim.set_positions(sim.positions)  # disk 0 lies across the open wall
+    assert sim.positions[0, 1] == 5.0
+    # At rest on it under gravity: refused on a closed wall (it would bounce without
+    # end), not on an open one, through which it falls.
+    with pytest.raises(ValueError, match="segment"):
+        ed.Simulation([[2.0, 5.5]], [[0.0, 0.0]], 0.5, box=box, walls=[wall],
+                      gravity=(0.0, -1.0))
+    falling = ed.Simulation([[2.0, 5.5]], [[0.0, 0.0]], 0.5, box=box, walls=[wall],
+                            open_walls=[0], gravity=(0.0, -1.0))
+    falling.advance(until=1.0)
+    assert falling.positions[0, 1] == pytest.approx(5.0)

@@ -170,7 +170,7 @@ class EngineState:
         self.build_grid(pos, self.grid_diameter(2.0 * float(rad.max())), cell_size)
         with about("positions"):
             self.check_overlaps(pos, rad)
-        _layout.support_view(state)[:] = _checks.resting(box, self.walls, gravity, pos,
+        _layout.support_view(state)[:] = _checks.resting(box, self.closed_walls(), gravity, pos,
                                                          vel, rad, mass, model)
         self.species = species
         self.model = model
@@ -389,6 +389,10 @@ class EngineState:
         self.S[:, _layout.VX:_layout.VY + 1] = vel[self.order]
         _layout.support_view(self.S)[:] = rest[self.order]
         self.predict_all()  # every event and kept candidate is recomputed
+
+    def closed_walls(self) -> tuple:
+        """The wall segments that are not open (the bodies a disk can meet)."""
+        return tuple(w for w, is_open in zip(self.walls, self.wall_open) if not is_open)
 
     def set_wall_open(self, k: int, is_open: bool) -> None:
         """Open wall segment ``k`` (no disk meets it any more; every disk at rest

@@ -1156,8 +1156,10 @@ def discharge(sim, duration: float, *, blocks: int = 10, axis: int = 1,
     require_simulation(sim, "discharge()")
     duration = as_positive_float("duration", duration)
     blocks = as_count("blocks", blocks, minimum=2)
-    if isinstance(axis, bool) or axis not in (0, 1):
+    if isinstance(axis, (bool, np.bool_)) or not isinstance(axis, (int, np.integer)) or (
+            axis not in (0, 1)):
         raise ValueError(f"axis must be 0 (x) or 1 (y), got {axis!r}")
+    axis = int(axis)
     if not sim.box.periodic[axis]:
         raise ValueError(f"discharge: the box is not periodic along axis {axis}: a flow "
                          f"through it has nowhere to re-enter")

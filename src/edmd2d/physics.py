@@ -589,7 +589,7 @@ KEYWORDS: dict[str, Keyword] = {}
 #: The family each keyword belongs to.
 _OWNER: dict[str, type[Family]] = {}
 # (Keywords of Simulation that are no family's: a family cannot take them.)
-_RESERVED = ("positions", "velocities", "radii", "masses", "box", "walls", "time",
+_RESERVED = ("positions", "velocities", "radii", "masses", "box", "walls", "open_walls", "time",
              "cell_size", "species", "seed")
 
 
@@ -814,6 +814,17 @@ class Resting(Family):
         """
         v = float(np.sqrt(2.0 * g * height))
         return cls(height, v, height, v, float(np.sqrt(4.0 * g * radius)), 0.1 * v)
+
+    @classmethod
+    def from_state(cls, state: dict) -> Resting:
+        """The family a checkpoint stored; one saved before ``press`` existed gets it
+        from the other fields: ``press = sqrt(2 |g| d) = speed sqrt(d / h)``, with the
+        smallest diameter ``d``, which such a checkpoint does not hold, taken as
+        ``1000 h`` (exact for the default ``rest_height``)."""
+        state = dict(state)
+        if "press" not in state:
+            state["press"] = float(state["speed"]) * float(np.sqrt(1000.0))
+        return cls(**state)
 
     @property
     def every(self) -> float:

@@ -629,7 +629,10 @@ class Simulation(SimulationBase):
         follow the new magnitude) and every event is predicted afresh.  The
         positions and velocities do not change, so the potential energy jumps:
         :meth:`gravity_work` books the jump, and ``total_energy() +
-        dissipated_energy() - gravity_work()`` stays constant to rounding.
+        dissipated_energy() - gravity_work()`` stays constant to rounding.  Under
+        gravity not along a box axis, a disk sliding on a box wall and one sliding on
+        another can press on each other at one instant for ever, and the run then
+        stops with an inelastic collapse (see ``docs/gravity-and-heat.md``).
 
         Examples
         --------
@@ -663,7 +666,7 @@ class Simulation(SimulationBase):
         if state.rest_frozen is not None:
             at_rest = self.resting
             vel[at_rest] = state.to_user(state.rest_frozen)[at_rest]
-        rest = _checks.resting(state.box, state.walls, g, self.positions, vel, self.radii,
+        rest = _checks.resting(state.box, state.closed_walls(), g, self.positions, vel, self.radii,
                                self.masses, state.model, "gravity")
         families = dict(state.families)
         if "resting" in families:
@@ -738,10 +741,11 @@ class Simulation(SimulationBase):
         # (Any grid serves the checks: the default one, also when the disks have grown
         # past a cell_size given at construction.)
         Simulation(pos, self.velocities, self.radii, self.masses, box=self._state.box,
-                   walls=self._state.walls, time=self._state.time)
+                   walls=self._state.walls, open_walls=np.flatnonzero(self._state.wall_open),
+                   time=self._state.time)
         state = self._state
         pos = _checks.check_in_box(state.box, pos, self.radii)  # (x = width becomes 0 if periodic)
-        state.place(pos, _checks.resting(state.box, state.walls, state.gravity, pos,
+        state.place(pos, _checks.resting(state.box, state.closed_walls(), state.gravity, pos,
                                          self.velocities, self.radii, self.masses,
                                          state.model))
 
@@ -776,7 +780,7 @@ class Simulation(SimulationBase):
         vel = as_float_array("velocities", velocities, (len(self), 2))
         state = self._state
         _checks.check_room(state.box, vel, self.radii)
-        state.set_velocities(vel, _checks.resting(state.box, state.walls, state.gravity,
+        state.set_velocities(vel, _checks.resting(state.box, state.closed_walls(), state.gravity,
                                                   self.positions, vel, self.radii,
                                                   self.masses, state.model, "velocities"))
 

@@ -820,7 +820,17 @@ class Resting(Family):
         """The family a checkpoint stored; one saved before ``press`` existed gets it
         from the other fields: ``press = sqrt(2 |g| d) = speed sqrt(d / h)``, with the
         smallest diameter ``d``, which such a checkpoint does not hold, taken as
-        ``1000 h`` (exact for the default ``rest_height``)."""
+        ``1000 h`` (exact for the default ``rest_height``).
+
+        Parameters
+        ----------
+        state : dict
+            The fields :meth:`state` stored.
+
+        Returns
+        -------
+        Resting
+        """
         state = dict(state)
         if "press" not in state:
             state["press"] = float(state["speed"]) * float(np.sqrt(1000.0))

@@ -825,7 +825,7 @@ class Resting(Family):
         Parameters
         ----------
         state : dict
-            The fields :meth:`state` stored.
+            The fields ``state()`` stored.
 
         Returns
         -------

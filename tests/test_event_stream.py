@@ -114,3 +114,64 @@ def test_events_written_to_a_file_read_back_exactly(tmp_path):
     (tmp_path / "other.csv").write_text("a,b\n1,2\n")
     with pytest.raises(ValueError, match="not an edmd2d event file"):
         read(tmp_path / "other.csv")
+
+
+def row_and_faller(n=5):
+    """``n`` inelastic disks side by side just above the floor, which come to rest at
+    once, and one more falling onto them from high above (it wakes the row)."""
+    x = 1.0 + np.arange(n) * 1.0005
+    pos = np.vstack([np.column_stack([x, np.full(n, 0.5001)]), [x[n // 2] + 0.2, 15.0]])
+    return ed.Simulation(pos, np.zeros((n + 1, 2)), 0.5,
+                         box=ed.Box(n + 2.0, 20.0, periodic=False), restitution=0.9,
+                         wall_restitution=0.9, gravity=(0.0, -1.0))
+
+
+def replay(events, n):
+    """Each disk's state (at rest or not) after ``events``, checking that only a disk
+    in flight comes to rest and only one at rest wakes."""
+    at_rest = np.zeros(n, bool)
+    for e in events:
+        if e["kind"] in ("rest", "wake"):
+            assert at_rest[e["disk"]] == (e["kind"] == "wake"), e
+            assert e["partner"] == -1 and e["impulse"] >= 0.0
+            at_rest[e["disk"]] = e["kind"] == "rest"
+    return at_rest
+
+
+def test_rests_and_wakes_are_streamed_as_events_in_batches_that_keep_the_capacity():
+    sim = row_and_faller()
+    batches = []
+    sim.stream_events(batches.append, capacity=3)
+    sim.advance(until=4.0)  # the row at rest; the sixth disk still falling
+    events = np.concatenate(batches)
+    assert (replay(events, len(sim)) == sim.resting).all() and sim.resting.sum() == 5
+    sim.advance(until=200.0)  # it lands, wakes the row, and all settle again
+    events = np.concatenate(batches)
+    assert max(len(b) for b in batches) <= 3
+    assert (np.diff(events["time"]) >= 0.0).all()
+    kinds = events["kind"].tolist()
+    assert kinds.count("rest") == sim.counts.rests and kinds.count("wake") == sim.counts.wakes
+    assert sim.counts.wakes >= 1
+    assert kinds.count("disk") == sim.counts.collisions
+    assert (replay(events, len(sim)) == sim.resting).all() and sim.resting.all()
+    # The first wake comes at the impact that causes it, just before that collision.
+    first = kinds.index("wake")
+    after = events[first:][events["kind"][first:] != "wake"][0]
+    assert after["kind"] == "disk" and after["time"] == events[first]["time"]
+    assert 5 in (after["disk"], after["partner"])
+    # A disk at rest regains the momentum it came to rest with.
+    done = len(events)
+    sim.set_velocities(np.zeros((len(sim), 2)))  # (handed over at once)
+    woken = np.concatenate(batches)[done:]
+    assert woken["kind"].tolist() == ["wake"] * 6
+    assert (woken["time"] == sim.time).all()
+    assert sorted(woken["disk"].tolist()) == list(range(6))
+
+
+def test_streaming_rests_and_wakes_leaves_the_run_unchanged():
+    plain, streamed = row_and_faller(), row_and_faller()
+    streamed.stream_events(lambda batch: None, capacity=2)
+    for sim in (plain, streamed):
+        sim.advance(until=200.0)
+    assert (plain.positions == streamed.positions).all()
+    assert plain.counts == streamed.counts

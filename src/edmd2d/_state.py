@@ -61,7 +61,7 @@ _GROWTH_GRID_SLACK = 1.1
 _NO_MODEL = _layout.ModelFamilies(None, None, None, None)
 
 _KIND_NAMES = {_layout.DISK: "disk", _layout.SEGMENT: "wall", _layout.BOX: "box",
-               _layout.KICK: "thermostat"}
+               _layout.KICK: "thermostat", _layout.REST: "rest", _layout.WAKE: "wake"}
 _KIND_CODES = np.array(sorted(_KIND_NAMES))
 EVENT_KINDS = tuple(_KIND_NAMES[k] for k in _KIND_CODES)
 EVENT_DTYPE = np.dtype([("time", "f8"), ("kind", "U10"), ("disk", "i8"),
@@ -219,7 +219,8 @@ class EngineState:
         for name in ("listener", "recorded"):
             state.pop(name, None)
         for name, empty in (("log_t", np.zeros(0)), ("log_e", np.zeros((0, 3), np.int64)),
-                            ("log_j", np.zeros(0)), ("log_n", np.zeros(1, np.int64))):
+                            ("log_j", np.zeros(0)), ("log_n", np.zeros(1, np.int64)),
+                            ("log_capacity", 0)):
             state[name] = empty
         return state
 
@@ -243,6 +244,7 @@ class EngineState:
         state.setdefault("rest_frozen", None)
         state.setdefault("rest_t_static", None)
         state.setdefault("wall_open", np.zeros(len(state["walls"]), bool))
+        state["log_capacity"] = 0  # (a copy does not stream)
         acc = state["acc"]
         if len(acc) < _layout.N_ACC:  # (saved before gravity could be changed)
             state["acc"] = np.concatenate([acc, np.zeros(_layout.N_ACC - len(acc))])
@@ -495,25 +497,58 @@ class EngineState:
         self.set_log(0 if callback is None else capacity)
 
     def set_log(self, capacity: int) -> None:
-        self.log_t = np.zeros(capacity)
-        self.log_e = np.zeros((capacity, 3), np.int64)
-        self.log_j = np.zeros(capacity)
+        """An empty log that is handed over after ``capacity`` events (0: none); where
+        disks come to rest, with room beyond for the rests and wakes of one event
+        (``layout.Log``)."""
+        size = capacity
+        if capacity > 0 and self.rest_supports is not None:
+            size += len(self.S) + 16
+        self.log_capacity = capacity
+        self.log_t = np.zeros(size)
+        self.log_e = np.zeros((size, 3), np.int64)
+        self.log_j = np.zeros(size)
         self.log_n = np.zeros(1, np.int64)
+
+    def log_bundle(self):
+        return _layout.Log(self.log_t, self.log_e, self.log_n, self.log_j,
+                           self.log_capacity)
+
+    def log_changes(self, kind: int, rows: np.ndarray, velocities: np.ndarray) -> None:
+        """Log the rests or wakes (``kind``) of the disks ``rows`` at :attr:`time`,
+        with the velocities they lose or regain, as the engine does (``resting``),
+        and hand the log over."""
+        if self.log_capacity == 0 or len(rows) == 0:
+            return
+        if self.log_n[0] >= self.log_capacity:
+            self.drain()
+        k = int(self.log_n[0])
+        end = k + len(rows)  # (within the room beyond the capacity: at most every disk)
+        self.log_t[k:end] = self.time
+        self.log_e[k:end, 0] = kind
+        self.log_e[k:end, 1] = self.order[rows]
+        self.log_e[k:end, 2] = -1
+        self.log_j[k:end] = np.hypot(*velocities.T) / self.invm[rows]
+        self.log_n[0] = end
+        self.drain()  # (changes made from Python are handed over at once)
 
     def drain(self) -> None:
         """Hand the events in the engine's log to the listener and empty it."""
-        k = int(self.log_n[0])
-        if k == 0 or self.listener is None:
+        n = int(self.log_n[0])
+        if n == 0 or self.listener is None:
             return
-        batch = np.empty(k, dtype=EVENT_DTYPE)
-        batch["time"] = self.log_t[:k]
-        batch["kind"] = np.array(EVENT_KINDS)[np.searchsorted(_KIND_CODES,
-                                                              self.log_e[:k, 0])]
-        batch["disk"] = self.log_e[:k, 1]
-        batch["partner"] = self.log_e[:k, 2]
-        batch["impulse"] = self.log_j[:k]
         self.log_n[0] = 0
-        self.listener(batch)
+        # (The log may hold more than its capacity: the rests and wakes of its last
+        # event.  Batches keep to the capacity.)
+        for a in range(0, n, self.log_capacity):
+            b = min(a + self.log_capacity, n)
+            batch = np.empty(b - a, dtype=EVENT_DTYPE)
+            batch["time"] = self.log_t[a:b]
+            batch["kind"] = np.array(EVENT_KINDS)[np.searchsorted(_KIND_CODES,
+                                                                  self.log_e[a:b, 0])]
+            batch["disk"] = self.log_e[a:b, 1]
+            batch["partner"] = self.log_e[a:b, 2]
+            batch["impulse"] = self.log_j[a:b]
+            self.listener(batch)
 
     def record_events(self, capacity: int = 1 << 16) -> None:
         """Record every disk, wall and thermostat event (for :meth:`recorded_events`)."""
@@ -522,8 +557,8 @@ class EngineState:
 
     def recorded_events(self) -> list[tuple[float, str, int, int]]:
         """Recorded events as ``(time, kind, disk, partner)``; kind is "disk", "wall"
-        (partner: wall index), "box" (partner: 0..3 for x=0, x=width, y=0, y=height) or
-        "thermostat" (partner -1)."""
+        (partner: wall index), "box" (partner: 0..3 for x=0, x=width, y=0, y=height),
+        "thermostat", "rest" or "wake" (partner -1)."""
         self.drain()
         return [(float(e["time"]), str(e["kind"]), int(e["disk"]), int(e["partner"]))
                 for batch in self.recorded for e in batch]
@@ -551,7 +586,7 @@ class EngineState:
                           self.wsy),
             _layout.Calendar(self.hv, self.qhead, self.qs, self.qf),
             _layout.Tallies(self.counts, self.acc, self.wacc),
-            _layout.Log(self.log_t, self.log_e, self.log_n, self.log_j),
+            self.log_bundle(),
             families.contact, families.heated, families.thermostat, families.uniforms,
             self.gravity_bundle(), self.growth_bundle(), rest,
         )
@@ -566,7 +601,8 @@ class EngineState:
                             frozen, t_static,
                             np.empty(len(self.S), np.int32),
                             np.empty(_resting.CANDIDATES, np.int64),
-                            np.empty(_resting.CANDIDATES), np.empty(9, np.int64))
+                            np.empty(_resting.CANDIDATES), np.empty(9, np.int64),
+                            self.log_bundle(), self.order)
 
     def first_rest_check(self, after: float | None = None) -> float | None:
         """The first time after ``after`` (default :attr:`time`) at which groups of
@@ -603,6 +639,8 @@ class EngineState:
             self.gravity, rest.speed, rest.gap, _balance.TOL)
         if len(rows) == 0:
             return 0
+        if self.log_n[0] >= self.log_capacity > 0:
+            self.drain()  # (the log's room beyond its capacity is for these rests)
         bundle = self.rest_bundle()
         bundle.supports[rows] = supports
         bundle.stack[:len(rows)] = rows
@@ -610,6 +648,8 @@ class EngineState:
                             self.qt, self.hv, self.qhead, self.qs, self.qf, self.invm,
                             self.gi, self.head, self.nxt, self.acc, self.counts,
                             self.gravity_bundle(), bundle)
+        if self.log_n[0] >= self.log_capacity > 0:
+            self.drain()
         return len(rows)
 
     def wake_all(self) -> None:
@@ -623,6 +663,7 @@ class EngineState:
         resting = support & _layout.RESTING != 0
         self.S[resting, _layout.T] = self.time
         frozen = frozen_all[resting]
+        self.log_changes(_layout.WAKE, np.flatnonzero(resting), frozen)
         self.S[resting, _layout.VX:_layout.VY + 1] = frozen
         self.acc[_layout.A_DISSIPATED] -= float(
             0.5 * ((frozen ** 2).sum(axis=1) / self.invm[resting]).sum())

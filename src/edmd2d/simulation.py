@@ -811,10 +811,13 @@ class Simulation(SimulationBase):
             Called as ``callback(batch)`` with a NumPy structured array of up to
             ``capacity`` events in time order, fields ``time``, ``kind`` (the names of
             :data:`EVENT_KINDS`: ``"disk"``, ``"wall"`` (a segment), ``"box"``,
-            ``"thermostat"``), ``disk``, ``partner`` (a disk, a segment index, a box
-            wall 0-3 for x=0, x=width, y=0, y=height, or -1 for a thermostat redraw)
-            and ``impulse`` (the momentum change of a movable disk of the event).  Cell
-            crossings are bookkeeping, not streamed.  ``None`` stops the stream.
+            ``"thermostat"``, and where disks come to rest (:class:`physics.Resting`)
+            ``"rest"`` and ``"wake"``), ``disk``, ``partner`` (a disk, a segment
+            index, a box wall 0-3 for x=0, x=width, y=0, y=height, or -1 for a
+            thermostat redraw, a rest or a wake) and ``impulse`` (the momentum change
+            of a movable disk of the event; for a rest or a wake the momentum the disk
+            loses or regains).  Cell crossings are bookkeeping, not streamed.
+            ``None`` stops the stream.
         capacity : int, default 65536
             Events per batch: when the engine's buffer is full it returns to Python
             for ``callback``, then goes on; the last batch of a call of
@@ -825,6 +828,13 @@ class Simulation(SimulationBase):
         With no stream the engine records nothing and costs nothing more.  The
         callback is not part of the state: copies, pickles and checkpoints do not
         stream.
+
+        Rests and wakes come at the time of what caused them: the wakes an impact
+        causes before the collision, the rests that follow a collision after it,
+        every disk woken by :meth:`set_velocities`, :meth:`set_positions`,
+        :meth:`set_gravity` or :meth:`open_wall` at that moment.  Replaying them
+        gives :attr:`resting` at every event, and their numbers are
+        ``counts.rests`` and ``counts.wakes``.
 
         Examples
         --------

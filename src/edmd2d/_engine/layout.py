@@ -127,6 +127,8 @@ class Kind(IntEnum):
     BOX = 3
     CROSS = 4
     KICK = 5  # a thermostat's velocity redraw (never a kept candidate)
+    REST = 6  # a disk put to rest (logged only; see .resting)
+    WAKE = 7  # a disk at rest woken (logged only)
 
 
 # (Plain ints for the compiled code.)
@@ -136,6 +138,8 @@ SEGMENT = int(Kind.SEGMENT)
 BOX = int(Kind.BOX)
 CROSS = int(Kind.CROSS)
 KICK = int(Kind.KICK)
+REST = int(Kind.REST)
+WAKE = int(Kind.WAKE)
 KIND_MASK = 15  # low bits of E[:, KIND]; the bits above hold a crossing's direction
 
 
@@ -351,7 +355,12 @@ class Tallies(NamedTuple):
 
 
 class Log(NamedTuple):
-    """The event log (capacity ``len(times)``; 0: no log)."""
+    """The event log.
+
+    The loop returns ``LOG_FULL`` once ``capacity`` events are logged (0: no log).
+    Where disks come to rest the arrays are longer than ``capacity`` by more than the
+    number of disks: one event may log the rests and wakes it causes besides itself
+    (at most every disk once), and none may be lost."""
 
     #: float64: each logged event's time.
     times: np.ndarray
@@ -361,6 +370,8 @@ class Log(NamedTuple):
     count: np.ndarray
     #: float64: each logged event's impulse.
     impulses: np.ndarray
+    #: The events after which the log is emptied (0: no log).
+    capacity: int
 
 
 # --- the physics families (each None when unused)
@@ -469,6 +480,10 @@ class Rest(NamedTuple):
     angles: np.ndarray
     #: int64, shape (9,): room for a 3x3 block of cells.
     cells: np.ndarray
+    #: The event log, where rests and wakes are logged as events (``REST``, ``WAKE``).
+    log: Log
+    #: int64: each row's user index (for the log).
+    order: np.ndarray
 
 
 class ModelFamilies(NamedTuple):

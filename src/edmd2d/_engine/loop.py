@@ -138,6 +138,17 @@ def _log_event(k, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm, order,
         log_j[k] = 0.0
 
 
+@njit
+def _make_room(m, k, log_t, log_e, log_j):
+    """Move the log's entries ``m .. k-1`` one place on, to free entry ``m``."""
+    for r in range(k - 1, m - 1, -1):
+        log_t[r + 1] = log_t[r]
+        log_e[r + 1, 0] = log_e[r, 0]
+        log_e[r + 1, 1] = log_e[r, 1]
+        log_e[r + 1, 2] = log_e[r, 2]
+        log_j[r + 1] = log_j[r]
+
+
 @kernel
 def run(control, particles, grid, walls, calendar, tallies, log,
         contact, heated, thermostat, uniforms, gravity, growth, rest):
@@ -162,13 +173,16 @@ def run(control, particles, grid, walls, calendar, tallies, log,
     walls or a thermostat) the loop returns ``NEED_RANDOM`` before an event when its
     buffer runs low (nothing of that event done yet): refill it and call again.
 
-    If ``log_t`` has room, every disk-disk, segment, box-wall and thermostat event is
-    recorded as ``log_t[k]``, ``log_e[k] = (kind, i, partner)`` (partner -1 for a
-    redraw), with its impulse ``log_j[k]`` (the momentum change of a movable disk of the
-    event: ``J`` for a contact), and ``log_n[0]`` counts them; disks are recorded by
-    their user index ``order[i]``.  When the log is full the loop returns ``LOG_FULL``
-    after the event that filled it (the caller empties the log and calls again, so no
-    event is lost); with no log (capacity 0) none of this runs.
+    With a log (``log.capacity > 0``), every disk-disk, segment, box-wall and
+    thermostat event is recorded as ``log_t[k]``, ``log_e[k] = (kind, i, partner)``
+    (partner -1 for a redraw), with its impulse ``log_j[k]`` (the momentum change of a
+    movable disk of the event: ``J`` for a contact), and ``log_n[0]`` counts them; disks
+    are recorded by their user index ``order[i]``.  Where disks come to rest, their
+    rests and wakes are recorded too (by ``resting``, partner -1): at one instant the
+    wakes an event causes come before it, the rests after it.  Once ``log.capacity``
+    entries are logged the loop returns ``LOG_FULL`` after the event (the caller
+    empties the log and calls again; the arrays have room for what one event logs
+    beyond that, so no event is lost); with no log none of this runs.
     """
     t_end = control.t_end
     max_collisions = control.max_collisions
@@ -208,7 +222,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
     log_j = log.impulses
     ncx = gi[0]
     ncy = gi[1]
-    log_cap = log_t.shape[0]
+    log_cap = log.capacity
     n_coll = 0
     n_ev = 0
     status = REACHED_TIME
@@ -222,6 +236,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
     redo1 = -1
     direction = -1
     stale = False
+    mark = -1
     t_redo0 = INF
     t_redo1 = INF
     opened = np.int64(-1)  # the calendar bucket the lookahead last ran for (int64: one
@@ -298,6 +313,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
             redo1 = -1
             direction = -1  # of a cell crossing of i, for a partial prediction
             stale = False
+            mark = -1  # (where the rests this event causes start in the log)
             if log_cap > 0 and kind != CROSS:
                 pvx, pvy = velocity_at(i, t, S, gravity)
                 if kind == DISK:
@@ -328,6 +344,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                                              qs, qf, invm, gi, gf, head, nxt, wa, wb, wstart,
                                              wwall, wsx, wsy, acc, counts, heated, gravity,
                                              rest)
+                        mark = log_n[0]
                     if rest is not None and still:
                         if resting.collide_static(i, j, t, aux, S, invm, acc, gf, contact,
                                                   gravity, rest):
@@ -375,6 +392,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 redo0 = i
                 counts[C_WALL] += 1
                 if rest is not None:
+                    mark = log_n[0]
                     rest.t_static[i] = t
                     if not response.hot(kind, partner, aux, heated):
                         if kind == BOX:
@@ -462,11 +480,16 @@ def run(control, particles, grid, walls, calendar, tallies, log,
         out[0] = t
         if kind != CROSS and log_cap > 0:
             k = log_n[0]
-            if k < log_cap:
-                _log_event(k, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm, order,
-                           log_t, log_e, log_j)
+            if k < log_t.shape[0]:
+                slot = k
+                if 0 <= mark < k:
+                    # The rests the event caused are logged: it goes before them.
+                    _make_room(mark, k, log_t, log_e, log_j)
+                    slot = mark
+                _log_event(slot, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm,
+                           order, log_t, log_e, log_j)
             log_n[0] = k + 1
-            if k + 1 >= log_cap and n_coll < max_collisions:
+            if log_n[0] >= log_cap and n_coll < max_collisions:
                 status = LOG_FULL  # (return for the log to be emptied, then go on)
                 break
         if n_coll >= max_collisions:

@@ -42,6 +42,9 @@ it.  Waking and the forced predictions use the loop's own machinery: a disk to b
 predicted afresh gets an event now whose partner stamp cannot match (:func:`mark_stale`),
 so the loop predicts it at its single prediction site.
 
+Rests and wakes are counted (``C_RESTS``, ``C_WAKES``) and, where events are
+streamed, logged as events of their own (:func:`_log`).
+
 Box walls: under gravity a bounce on a box wall that gravity presses the disk into,
 with a normal speed below ``rest.speed``, leaves the disk sliding along the wall
 (``flight``: the wall holds gravity's normal component), as the TC model's ``hold``
@@ -71,9 +74,11 @@ from .layout import (
     KIND,
     PARTNER,
     PSTAMP,
+    REST,
     RESTING,
     VX,
     VY,
+    WAKE,
     R,
     T,
     X,
@@ -106,6 +111,23 @@ CANDIDATES = 32
 def is_resting(i, gravity):
     """Whether disk ``i`` is at rest."""
     return (gravity.support[i] & RESTING) != 0
+
+
+@njit
+def _log(kind, d, t, vx, vy, invm, rest):
+    """Log the rest or the wake (``kind``) of disk ``d`` at ``t`` where events are
+    streamed, its impulse the momentum it lost or regained (velocity ``v``).  The log
+    has room beyond its capacity for every disk (``layout.Log``)."""
+    log = rest.log
+    if log.capacity > 0:
+        k = log.count[0]
+        if k < log.times.shape[0]:
+            log.times[k] = t
+            log.events[k, 0] = kind
+            log.events[k, 1] = rest.order[d]
+            log.events[k, 2] = -1
+            log.impulses[k] = math.hypot(vx, vy) / invm[d]
+        log.count[0] = k + 1
 
 
 @njit
@@ -196,6 +218,7 @@ def _wake_one(d, t, skip, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, acc, 
     S[d, T] = t  # (at rest its position holds at any time)
     stamp[d] += 1
     counts[C_WAKES] += 1
+    _log(WAKE, d, t, vx, vy, invm, rest)
     if d != skip:
         mark_stale(d, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
 
@@ -431,6 +454,7 @@ def _put_to_rest(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head
     support[i] = RESTING
     stamp[i] += 1
     counts[C_RESTS] += 1
+    _log(REST, i, t, vx, vy, invm, rest)
     # A flying disk near it may now meet it before its next event: predict it afresh.
     cells = rest.cells
     for k in range(_near_cells(E[i, CELL], gi, cells)):

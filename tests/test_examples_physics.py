@@ -359,7 +359,7 @@ def test_beverloo_fits_and_plots_a_small_sweep(tmp_path, capsys):
 
 def test_an_hourglass_runs_out_steadily_and_back_when_turned_over(tmp_path, capsys):
     """60 disks on the closed gate of an hourglass; opened, every disk runs through the
-    neck and comes to rest below it, at a steady rate (the count above the neck stays
+    neck and comes to rest below it, without jamming (the count above the neck stays
     within 6 disks of a straight line while 80 % to 20 % of them are left: 1-2 disks
     measured, a jam would leave a plateau); turned over (gravity reversed), all run
     back and come to rest.  Kinetic + potential + dissipated energy, less the jump

@@ -16,7 +16,9 @@ start; after ``TRANSIENT`` its rate is measured over ``DURATION`` in 10 blocks
 The fit: each width's rate is the mean over the three fills, with its error from
 their spread; ``W^(2/3)`` is then linear in ``D`` (weighted least squares), which gives
 ``C`` and ``k`` with their errors, and the chi^2 and residuals say how well the law
-holds.  A silo that jams (an arch holds over its outlet, and the flow stops) is
+holds.  With more than three widths the exponent is fitted too, ``W = C (D - k)^b``
+with ``C``, ``k`` and ``b`` together (their errors, and the correlation of ``k`` and
+``b``, which is strong: a larger shift mimics a smaller exponent).  A silo that jams (an arch holds over its outlet, and the flow stops) is
 reported and left out.
 
 Writes a figure of ``W^(2/3)`` against ``D`` with the fit (``.png`` or ``.svg``), and
@@ -94,6 +96,27 @@ def fit(outlets: np.ndarray, rates: np.ndarray, errors: np.ndarray) -> dict:
                 residuals=residuals.tolist(), slope=float(slope), intercept=float(intercept))
 
 
+def fit_exponent(outlets: np.ndarray, rates: np.ndarray, errors: np.ndarray,
+                 start: dict) -> dict:
+    """Beverloo's law with its exponent free, ``W = C (D - k)^b``: ``C``, ``k`` and ``b``
+    fitted together (weighted least squares, ``scipy.optimize.curve_fit``, from the
+    3/2 fit ``start``), with their errors from the errors of the rates, their
+    correlation and chi^2."""
+    from scipy.optimize import curve_fit
+
+    def law(d, c, k, b):
+        return c * np.maximum(d - k, 1e-12) ** b
+
+    p, cov = curve_fit(law, outlets, rates, p0=[start["c"], start["k"], 1.5],
+                       sigma=errors, absolute_sigma=True, maxfev=20_000)
+    err = np.sqrt(np.diag(cov))
+    corr = cov / np.outer(err, err)
+    chi2 = float(np.sum(((rates - law(outlets, *p)) / errors) ** 2))
+    return dict(c=float(p[0]), k=float(p[1]), b=float(p[2]), c_err=float(err[0]),
+                k_err=float(err[1]), b_err=float(err[2]), corr_kb=float(corr[1, 2]),
+                chi2=chi2, dof=len(outlets) - 3)
+
+
 def main(out: Path) -> dict:
     """Run every silo, fit, plot, print; return the rows and the fit."""
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -133,6 +156,13 @@ def main(out: Path) -> dict:
     print(f"  Beverloo, exponent 3/2: C = {result['c']:.3f} +- {result['c_err']:.3f}, "
           f"k = {result['k']:.2f} +- {result['k_err']:.2f} (chi^2 = {result['chi2']:.1f} "
           f"for {result['dof']} degrees of freedom)")
+    free = None
+    if len(outlets) > 3:
+        free = fit_exponent(outlets, rates, errors, result)
+        print(f"  exponent free: b = {free['b']:.2f} +- {free['b_err']:.2f}, k = "
+              f"{free['k']:.2f} +- {free['k_err']:.2f} (correlation of k and b "
+              f"{free['corr_kb']:+.2f}), C = {free['c']:.3f} +- {free['c_err']:.3f} "
+              f"(chi^2 = {free['chi2']:.1f} for {free['dof']} degrees of freedom)")
     fig, ax = plt.subplots(figsize=(5.0, 3.8))
     for n, marker in zip(fills, "os^"):
         sel = [r for r in flowing if r["n"] == n]
@@ -154,7 +184,7 @@ def main(out: Path) -> dict:
     fig.savefig(out, dpi=100)
     plt.close(fig)
     print(f"wrote {out}")
-    return dict(rows=rows, fit=result)
+    return dict(rows=rows, fit=result, free=free)
 
 
 if __name__ == "__main__":

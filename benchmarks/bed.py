@@ -1,9 +1,10 @@
 """A poured bed: the time it takes to settle, the speed while it flows, its cost at rest.
 
 ``N`` inelastic disks (``restitution = wall_restitution = 0.9``) start as a gas at
-packing fraction 0.15 in a walled box twice as wide as tall
-(``make_gas(N, 0.15, periodic=False, aspect=2.0, seed=1, gravity=(0, -1))``), fall,
-and settle into a bed, the disks coming to rest with the library's defaults:
+packing fraction ``--packing`` (0.15) in a walled box ``--aspect`` (2) times as wide
+as tall (``make_gas(N, packing, periodic=False, aspect=aspect, seed=1, gravity=(0,
+-1))``), fall, and settle into a bed, the disks coming to rest with the library's
+defaults:
 
     python benchmarks/bed.py --n 100000
 
@@ -28,9 +29,11 @@ def main() -> None:
     parser.add_argument("--n", type=int, default=100_000)
     parser.add_argument("--interval", type=float, default=10.0)
     parser.add_argument("--until", type=float, default=2000.0)
+    parser.add_argument("--packing", type=float, default=0.15)
+    parser.add_argument("--aspect", type=float, default=2.0)
     args = parser.parse_args()
-    sim = ed.make_gas(args.n, 0.15, periodic=False, aspect=2.0, seed=1, restitution=0.9,
-                      wall_restitution=0.9, gravity=(0.0, -1.0))
+    sim = ed.make_gas(args.n, args.packing, periodic=False, aspect=args.aspect, seed=1,
+                      restitution=0.9, wall_restitution=0.9, gravity=(0.0, -1.0))
     w, h = sim.box.size
     print(f"N = {args.n}, box {w:.1f} x {h:.1f}, rest search every "
           f"{sim.families['resting'].every:.3f} time units", flush=True)

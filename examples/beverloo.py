@@ -18,8 +18,8 @@ their spread; ``W^(2/3)`` is then linear in ``D`` (weighted least squares), whic
 ``C`` and ``k`` with their errors, and the chi^2 and residuals say how well the law
 holds.  With more than three widths the exponent is fitted too, ``W = C (D - k)^b``
 with ``C``, ``k`` and ``b`` together (their errors, and the correlation of ``k`` and
-``b``, which is strong: a larger shift mimics a smaller exponent).  A silo that jams (an arch holds over its outlet, and the flow stops) is
-reported and left out.
+``b``, which is strong: a larger shift mimics a smaller exponent).  A silo that jams
+(an arch holds over its outlet, and the flow stops) is reported and left out.
 
 Writes a figure of ``W^(2/3)`` against ``D`` with the fit (``.png`` or ``.svg``), and
 prints the table of rates and the fitted constants::

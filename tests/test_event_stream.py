@@ -175,3 +175,69 @@ def test_streaming_rests_and_wakes_leaves_the_run_unchanged():
         sim.advance(until=200.0)
     assert (plain.positions == streamed.positions).all()
     assert plain.counts == streamed.counts
+
+
+def test_a_callback_that_stops_the_stream_gets_the_rest_of_what_was_logged():
+    sim = row_and_faller()
+    sim.advance(until=4.0)  # five disks at rest
+    seen = []
+
+    def stop_at_first(batch):
+        seen.append(batch)
+        if len(seen) == 1:
+            sim.stream_events(None)
+
+    sim.stream_events(stop_at_first, capacity=3)
+    sim.set_velocities(np.zeros((len(sim), 2)))  # wakes five disks: two batches
+    kinds = np.concatenate(seen)["kind"].tolist()
+    assert kinds == ["wake"] * 5 and [len(b) for b in seen] == [3, 2]
+
+
+def test_wakes_made_from_python_are_handed_over_once_the_disks_are_awake():
+    sim = row_and_faller()
+    sim.advance(until=4.0)
+    at_rest_when_seen = []
+    sim.stream_events(lambda batch: at_rest_when_seen.append(int(sim.resting.sum())))
+    sim.set_velocities(np.zeros((len(sim), 2)))
+    assert at_rest_when_seen == [0]
+
+
+def test_the_impulse_of_a_collision_that_ends_at_rest_is_the_collision_s_own():
+    # A disk dropped 0.5 above a row of five at rest (wall to wall) bounces in a groove
+    # of the row and comes to rest there after a collision, the row untouched: each
+    # collision (alone in a run to the next) is logged with m |v_after - v_before|,
+    # v_before from its parabola since the stop before, v_after as the collision left
+    # it (the velocity it came to rest with, for the last).
+    x = 0.5001 + np.arange(5) * 1.0005
+    pos = np.vstack([np.column_stack([x, np.full(5, 0.5001)]), [x[2] + 0.3, 2.0]])
+    sim = ed.Simulation(pos, np.zeros((6, 2)), 0.5,
+                        box=ed.Box(x[-1] + 0.5006, 6.0, periodic=False), restitution=0.9,
+                        wall_restitution=0.9, gravity=(0.0, -1.0))
+    sim.advance(until=0.5)
+    assert sim.resting[:5].all()
+    batches = []
+    sim.stream_events(batches.append)
+    checked = rested = 0
+    while not sim.resting.all():
+        t0, v0 = sim.time, sim.velocities[5].copy()
+        done = sum(len(b) for b in batches)
+        sim.advance(until=t0 + 50.0, collisions=1)
+        new = np.concatenate(batches)[done:] if batches else []
+        if len(new) == 0 or new[0]["kind"] == "rest":
+            break  # (at rest with the row as a group, between two collisions)
+        moves = new[new["kind"] != "rest"]
+        assert (moves["disk"] == 5).all()
+        if len(moves) > 1:
+            continue  # (wall contacts before the collision: its velocity before unknown)
+        event = moves[0]
+        before = v0 + np.array([0.0, -1.0]) * (event["time"] - t0)
+        if sim.resting[5]:
+            assert new[1]["kind"] == "rest" and new[1]["disk"] == 5
+            row = int(np.flatnonzero(sim._state.order == 5)[0])
+            after = sim._state.rest_frozen[row]
+            rested += 1
+        else:
+            after = sim.velocities[5]
+        assert event["impulse"] == pytest.approx(np.hypot(*(after - before)), rel=1e-9)
+        checked += 1
+    assert sim.resting.all() and rested == 1 and checked > 3 and sim.counts.wakes == 0

@@ -534,11 +534,13 @@ class EngineState:
     def drain(self) -> None:
         """Hand the events in the engine's log to the listener and empty it."""
         n = int(self.log_n[0])
-        if n == 0 or self.listener is None:
+        listener = self.listener
+        if n == 0 or listener is None:
             return
-        self.log_n[0] = 0
         # (The log may hold more than its capacity: the rests and wakes of its last
-        # event.  Batches keep to the capacity.)
+        # event.  Batches keep to the capacity; all are made before the listener sees
+        # any, since it may stop or change the stream.)
+        batches = []
         for a in range(0, n, self.log_capacity):
             b = min(a + self.log_capacity, n)
             batch = np.empty(b - a, dtype=EVENT_DTYPE)
@@ -548,7 +550,10 @@ class EngineState:
             batch["disk"] = self.log_e[a:b, 1]
             batch["partner"] = self.log_e[a:b, 2]
             batch["impulse"] = self.log_j[a:b]
-            self.listener(batch)
+            batches.append(batch)
+        self.log_n[0] = 0
+        for batch in batches:
+            listener(batch)
 
     def record_events(self, capacity: int = 1 << 16) -> None:
         """Record every disk, wall and thermostat event (for :meth:`recorded_events`)."""
@@ -663,7 +668,6 @@ class EngineState:
         resting = support & _layout.RESTING != 0
         self.S[resting, _layout.T] = self.time
         frozen = frozen_all[resting]
-        self.log_changes(_layout.WAKE, np.flatnonzero(resting), frozen)
         self.S[resting, _layout.VX:_layout.VY + 1] = frozen
         self.acc[_layout.A_DISSIPATED] -= float(
             0.5 * ((frozen ** 2).sum(axis=1) / self.invm[resting]).sum())
@@ -671,6 +675,7 @@ class EngineState:
         supports[:] = -1
         frozen_all[:] = 0.0
         self.counts[_layout.C_WAKES] += int(resting.sum())
+        self.log_changes(_layout.WAKE, np.flatnonzero(resting), frozen)  # (once woken)
 
     def gravity_bundle(self):
         """The engine's gravity family: ``None`` (straight-line flight) or a

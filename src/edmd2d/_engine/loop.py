@@ -117,12 +117,22 @@ def _step_cell(c, up, n):
 
 
 @njit
+def _velocity_after(d, S, gravity, rest):
+    """Disk ``d``'s velocity right after the event: the one it came to rest with, if
+    the event ended with it at rest (its velocity is then 0)."""
+    if rest is not None and resting.is_resting(d, gravity):
+        return rest.frozen[d, 0], rest.frozen[d, 1]
+    return S[d, VX], S[d, VY]
+
+
+@njit
 def _log_event(k, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm, order,
-               log_t, log_e, log_j):
+               log_t, log_e, log_j, gravity, rest):
     """Write event ``k`` of the log: its time, kind, disks (by user index) or wall, and
     its impulse, the momentum change of a movable disk of the event (velocities
-    ``pv`` of ``i`` and ``qv`` of a partner disk before it).  (A function of its own:
-    compiled once, not into the loop.)"""
+    ``pv`` of ``i`` and ``qv`` of a partner disk before it; after it, as the event
+    left them, before a rest that followed).  (A function of its own: compiled once,
+    not into the loop.)"""
     log_t[k] = t
     log_e[k, 0] = kind
     log_e[k, 1] = order[i]
@@ -131,9 +141,11 @@ def _log_event(k, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm, order,
     else:
         log_e[k, 2] = partner if kind == SEGMENT else aux
     if invm[i] > 0.0:
-        log_j[k] = math.hypot(S[i, VX] - pvx, S[i, VY] - pvy) / invm[i]
+        vx, vy = _velocity_after(i, S, gravity, rest)
+        log_j[k] = math.hypot(vx - pvx, vy - pvy) / invm[i]
     elif kind == DISK:
-        log_j[k] = math.hypot(S[partner, VX] - qvx, S[partner, VY] - qvy) / invm[partner]
+        vx, vy = _velocity_after(partner, S, gravity, rest)
+        log_j[k] = math.hypot(vx - qvx, vy - qvy) / invm[partner]
     else:
         log_j[k] = 0.0
 
@@ -487,7 +499,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     _make_room(mark, k, log_t, log_e, log_j)
                     slot = mark
                 _log_event(slot, t, kind, i, partner, aux, pvx, pvy, qvx, qvy, S, invm,
-                           order, log_t, log_e, log_j)
+                           order, log_t, log_e, log_j, gravity, rest)
             log_n[0] = k + 1
             if log_n[0] >= log_cap and n_coll < max_collisions:
                 status = LOG_FULL  # (return for the log to be emptied, then go on)

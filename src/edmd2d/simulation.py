@@ -811,7 +811,7 @@ class Simulation(SimulationBase):
             Called as ``callback(batch)`` with a NumPy structured array of up to
             ``capacity`` events in time order, fields ``time``, ``kind`` (the names of
             :data:`EVENT_KINDS`: ``"disk"``, ``"wall"`` (a segment), ``"box"``,
-            ``"thermostat"``, and where disks come to rest (:class:`physics.Resting`)
+            ``"thermostat"``, and where disks come to rest (:class:`edmd2d.physics.Resting`)
             ``"rest"`` and ``"wake"``), ``disk``, ``partner`` (a disk, a segment
             index, a box wall 0-3 for x=0, x=width, y=0, y=height, or -1 for a
             thermostat redraw, a rest or a wake) and ``impulse`` (the momentum change

@@ -5,7 +5,9 @@ disk against every wall, box wall and wall end point, takes the earliest contact
 *all* disks to that moment, resolves it, and repeats.  It is slow (O(N^2) per event) and
 meant to be read: it is the specification of what :class:`edmd2d.Simulation` computes
 and the oracle its tests compare against.  It shares no code with the compiled engine;
-only the value objects :class:`~edmd2d.Box` and :class:`~edmd2d.Wall` are common.
+only the value objects :class:`~edmd2d.Box` and :class:`~edmd2d.Wall` are common, and
+the static test of whether a group of slow disks holds itself up (a linear program in
+``edmd2d._balance``, tested on its own).
 
 Collisions may be inelastic.  The disks are smooth: a collision changes only the normal
 component of the relative velocity (of the disk's velocity, at a wall), which becomes
@@ -24,9 +26,14 @@ their own: :func:`numpy.roots` on the derivative cuts time into pieces on which 
 contact function is monotonic, and its sign, followed by Newton's method and bisection,
 locates the crossing.
 
-The code comes in four parts: the contact-time oracles (``_times.py``), the search for
-the earliest contact (``_search.py``), the collision rules (``_rules.py``) and the event
-loop with the simulation's state (``_loop.py``).
+Under gravity, disks may come to rest (``resting``): a slow disk held by static bodies
+stops being moved until an impact, a support leaving or a thermostat wakes it, by
+the rules of :class:`edmd2d.physics.Resting`, written out plainly in ``_resting.py``.
+
+The code comes in five parts: the contact-time oracles (``_times.py``), the search for
+the earliest contact (``_search.py``), the collision rules (``_rules.py``), the rules
+of disks at rest (``_resting.py``) and the event loop with the simulation's state
+(``_loop.py``).
 
 Examples
 --------

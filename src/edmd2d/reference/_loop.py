@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Sequence
+from typing import Any
 
 import numpy as np
 
@@ -83,6 +84,11 @@ class ReferenceSimulation(CollisionRules):
         elastic).  A contact reverses the rate ``dd - vn`` at which the gap closes
         (``vn`` the normal relative velocity, ``dd`` the growth speed of the contact
         distance): ``vn' = 2 dd - vn``, elastic in the frame of the growing rims.
+    resting : edmd2d.physics.Resting, optional
+        Disks come to rest under gravity with these criteria (``speed``, ``gap``,
+        ``wake``, ``press``, ``soft`` and ``every``), by the rules written out in
+        ``_resting.py``; the TC model then holds no disk on a box wall.  Pass the
+        engine's own (``Simulation`` holds it when disks rest) to compare the two.
 
     Attributes
     ----------
@@ -91,7 +97,8 @@ class ReferenceSimulation(CollisionRules):
     positions, velocities : ndarray, shape (N, 2)
         The state at ``time`` (copies).
     events : list of (float, str, int, int)
-        Every disk, wall and box event as ``(time, kind, disk, partner)``.
+        Every disk, wall and box event as ``(time, kind, disk, partner)``; with
+        ``resting`` also ``"rest"`` and ``"wake"`` (partner -1).
     collisions, wall_collisions : int
         Disk-disk and disk-wall (box walls and segments) collision counts.
     t_last : list of float
@@ -103,6 +110,16 @@ class ReferenceSimulation(CollisionRules):
         gravity ``total_energy() + dissipated`` is.
     gravity : tuple of float
         The acceleration ``(gx, gy)``.
+    at_rest : list of bool
+        Whether each disk is at rest (with ``resting``).
+    supports : list of list of int
+        The supports noted for each disk at rest: a disk's index, ``-2 - side`` for a
+        box wall, ``-6 - k`` for wall segment ``k``.
+    rests, wakes : int
+        How many times disks came to rest and woke.
+    close_calls : list of (float, str)
+        The decisions of the rules of rest taken within rounding of their thresholds,
+        ``(time, what)``: where another arithmetic may decide otherwise.
     images : list of [int, int]
         For each disk, the whole periodic lengths taken off each coordinate when it was
         wrapped back into the box: ``p + images * (width, height)`` is its unwrapped
@@ -187,7 +204,7 @@ class ReferenceSimulation(CollisionRules):
                  gravity: tuple[float, float] = (0.0, 0.0),
                  wall_temperatures: dict | None = None,
                  thermostat: tuple[float, float] | None = None, seed: int | None = None,
-                 growth: float | None = None) -> None:
+                 growth: float | None = None, resting: Any = None) -> None:
         n = len(positions)
         # (Required: its default only lets it follow masses as a keyword.)
         assert box is not None, "ReferenceSimulation needs a box"
@@ -230,6 +247,25 @@ class ReferenceSimulation(CollisionRules):
         self.wall_kt = {(names[k] if isinstance(k, str) else 4 + k): float(t)
                         for k, t in (wall_temperatures or {}).items()}
         self.thermostat = thermostat
+        # Disks at rest (see _resting): the criteria, and each disk's state.
+        self.rest = resting
+        self.at_rest = [False] * n
+        self.frozen = [(0.0, 0.0)] * n
+        self.supports: list[list[int]] = [[] for _ in range(n)]
+        self.t_static = [-INF] * n
+        self.streak = [0] * n
+        self.t_before = [-INF] * n
+        self.close_calls: list[tuple[float, str]] = []
+        self.rests = 0
+        self.wakes = 0
+        self._woken: list[int] = []
+        self._rested: list[int] = []
+        self.next_check = INF  # the next search for groups that hold one another up
+        if resting is not None:
+            every = resting.every
+            self.next_check = every * (math.floor(self.time / every) + 1.0)
+            if self.next_check <= self.time:
+                self.next_check += every
         self.rng = np.random.default_rng(seed)
         self.wall_heat = [0.0] * (4 + len(self.walls))  # energy each wall gave the disks
         self.thermostat_energy = 0.0
@@ -283,7 +319,7 @@ class ReferenceSimulation(CollisionRules):
     def _acceleration(self, k):
         """Disk ``k``'s acceleration: gravity if movable (less the components held by
         the walls it rests on), zero if immovable."""
-        if math.isinf(self.m[k]):
+        if math.isinf(self.m[k]) or self.at_rest[k]:
             return (0.0, 0.0)
         held = {side // 2 for side in self.resting[k]}
         return tuple(0.0 if axis in held else g for axis, g in enumerate(self.gravity))
@@ -308,6 +344,10 @@ class ReferenceSimulation(CollisionRules):
         if math.isinf(self.m[k]):
             return
         assert self.thermostat is not None  # (called only with a thermostat)
+        if self.rest is not None:
+            self._wake(k)  # (the wakes come before the redraw)
+            self.events.extend((self.time, "wake", d, -1) for d in self._woken)
+            self._woken.clear()
         s = math.sqrt(self.thermostat[0] / self.m[k])
         before = _dot(self.v[k], self.v[k])
         vx = s * self._gauss()
@@ -391,6 +431,17 @@ class ReferenceSimulation(CollisionRules):
             dt, kind, i, partner, detail = self.next_event()
             horizon = self._horizon()
             wait = self.next_redraw - self.time
+            check = self.next_check
+            if (check <= target and check < self.time + dt and check < self.next_redraw
+                    and check - self.time <= horizon):
+                # The search for groups that hold one another up (after the events at
+                # its time, and after a redraw at its time).
+                self._drift(check - self.time)
+                self.time = check
+                self._wrap()
+                self._rest_groups()
+                self.next_check += self.rest.every
+                continue
             if wait <= min(dt, horizon) and self.next_redraw <= target:
                 # A thermostat redraw comes first (at a tie with a contact, too).
                 t_redraw = self.next_redraw
@@ -410,7 +461,12 @@ class ReferenceSimulation(CollisionRules):
             self._drift(dt)
             self._resolve(kind, i, partner, detail)
             self._wrap()
+            # The wakes the event caused come before it, the rests after it.
+            self.events.extend((self.time, "wake", d, -1) for d in self._woken)
             self.events.append((self.time, kind, i, partner))
+            self.events.extend((self.time, "rest", d, -1) for d in self._rested)
+            self._woken.clear()
+            self._rested.clear()
             done += kind == "disk"
         if until is not None and done < todo:
             self._drift(target - self.time)

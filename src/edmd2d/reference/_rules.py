@@ -11,11 +11,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
+from ._resting import RestingRules
 from ._times import _dot
 
 
-class CollisionRules:
+class CollisionRules(RestingRules):
     """The collision rules, as methods of the simulation whose state they update.
 
     The state is the one ``ReferenceSimulation`` sets up: the per-disk lists ``p``,
@@ -23,7 +25,9 @@ class CollisionRules:
     ``tc``, ``growth``, ``restitution``, ``wall_restitution``, ``gravity`` and
     ``wall_kt``, the clock ``time``, the tallies ``dissipated``, ``wall_heat``,
     ``collisions`` and ``wall_collisions``, and the random draws ``_u`` and ``_gauss``
-    (one stream for the whole run, shared with the thermostat).
+    (one stream for the whole run, shared with the thermostat); and, where disks come
+    to rest (``rest`` not ``None``), the state of :class:`RestingRules`, whose rules
+    it calls after each contact.
     """
 
     # The state described above, set up by ReferenceSimulation.
@@ -46,6 +50,7 @@ class CollisionRules:
     wall_heat: list[float]
     collisions: int
     wall_collisions: int
+    rest: Any
     _u: Callable[[], float]
     _gauss: Callable[[], float]
 
@@ -53,15 +58,23 @@ class CollisionRules:
         """The TC rule for disk ``k``: movable and collided less than ``tc`` ago."""
         return not math.isinf(self.m[k]) and self.time - self.t_last[k] < self.tc
 
-    def _pair_restitution(self, i, j):
-        if self._recent(i) or self._recent(j):
+    def _soft(self, vn):
+        """Whether a contact of normal speed ``|vn|`` is soft, hence elastic (where
+        disks come to rest: below the criteria's ``soft``)."""
+        if self.rest is None:
+            return False
+        self._close("soft", abs(vn), self.rest.soft, self.rest.soft)
+        return abs(vn) < self.rest.soft
+
+    def _pair_restitution(self, i, j, vn):
+        if self._recent(i) or self._recent(j) or self._soft(vn):
             return 1.0
         if isinstance(self.restitution, float):
             return self.restitution
         return self.restitution[self.species[i]][self.species[j]]
 
-    def _wall_restitution(self, i):
-        return 1.0 if self._recent(i) else self.wall_restitution
+    def _wall_restitution(self, i, vn):
+        return 1.0 if self._recent(i) or self._soft(vn) else self.wall_restitution
 
     def _resolve(self, kind, i, partner, detail):
         """Resolve the contact ``next_event`` found (``kind``, disk ``i``, its
@@ -71,6 +84,23 @@ class CollisionRules:
             j = partner
             if math.isinf(self.m[i]) and math.isinf(self.m[j]):
                 raise RuntimeError(f"immovable disks {i} and {j} meet")
+            if self.rest is not None and self.at_rest[i]:
+                # (The search found the pair from the disk at rest: see it from the
+                # flying one.)
+                i, j, detail = j, i, (-detail[0], -detail[1])
+                p, v = self.p[i], self.v[i]
+            if self.rest is not None and self._meet(i, j, detail):
+                # j at rest, and staying so: i bounces off it as off a fixed body.
+                wedged = self._bounce_static(
+                    i, j, detail, lambda vn: self._pair_restitution(i, j, vn))
+                self._note(i)
+                self._release(i)
+                if wedged and not self._settle(i):
+                    self._lift_off(i, j, detail)
+                    self._release(i)
+                self.collisions += 1
+                self._settle(i)
+                return
             sx, sy = detail
             d = (p[0] - self.p[j][0] - sx, p[1] - self.p[j][1] - sy)
             norm = math.sqrt(_dot(d, d))
@@ -85,7 +115,7 @@ class CollisionRules:
                 dv = (v[0] - self.v[j][0], v[1] - self.v[j][1])
                 s = self.r[i] + self.r[j]
                 vn = min((_dot(d, dv) - s * (self.dr[i] + self.dr[j])) / norm, 0.0)
-            e = self._pair_restitution(i, j)
+            e = self._pair_restitution(i, j, vn)
             # Impulse along n: v_i' = v_i - (1+e) m_j/(m_i+m_j) vn n, and the opposite
             # for j, so that vn becomes -e vn.  For e = 1, 1 + e is exactly 2.0: the
             # elastic result is the textbook one to the last bit.
@@ -103,15 +133,19 @@ class CollisionRules:
             # The kinetic energy of the relative normal motion, mu vn^2 / 2, times 1 - e^2.
             self.dissipated += 0.5 * (1.0 - e * e) * mu * vn * vn
             for disk in (i, j):
-                if not math.isinf(self.m[disk]):
-                    self.t_last[disk] = self.time
+                self._note(disk)
                 self._release(disk)
             self.collisions += 1
+            if self.rest is not None:
+                self._part(i, j, detail)
+                self._settle(i)
+                self._settle(j)
             return
         if math.isinf(self.m[i]):
             raise RuntimeError(f"immovable disk {i} reaches a wall")
-        e = self._wall_restitution(i)
         wall = partner if kind == "box" else 4 + partner
+        if self.rest is not None:
+            self.t_static[i] = self.time
         if wall in self.wall_kt:
             if kind == "box":
                 sign = 1.0 if partner % 2 == 0 else -1.0
@@ -128,7 +162,7 @@ class CollisionRules:
                 norm = math.sqrt(_dot(n, n))
                 n = (n[0] / norm, n[1] / norm)
             self._heat(i, wall, n)
-            self.t_last[i] = self.time
+            self._note(i)
             self.wall_collisions += 1
             self._release(i)  # (a heated wall never holds a disk, and frees one it hits)
             return
@@ -143,6 +177,7 @@ class CollisionRules:
         if kind == "box":
             axis = partner // 2
             vn = v[axis]
+            e = self._wall_restitution(i, vn)
             v[axis] = -e * vn
             self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
             g_in = self._pressing(partner)
@@ -152,8 +187,11 @@ class CollisionRules:
                 self.dissipated += 0.5 * self.m[i] * rebound * rebound
                 v[axis] = 0.0
                 self.resting[i].add(partner)
-            self.t_last[i] = self.time
+            self._note(i)
             self.wall_collisions += 1
+            if self.rest is not None:
+                self._slide(i, partner)
+                self._settle(i)
             return
         part, a, b = detail
         if part == "side":
@@ -175,12 +213,16 @@ class CollisionRules:
                 vn = min(vn - self.dr[i], 0.0)
             else:  # (as for a pair: the end point's separation times dv, less r dr)
                 vn = min((vn * norm - self.r[i] * self.dr[i]) / norm, 0.0)
+        e = self._wall_restitution(i, vn)
         k = 1.0 + e  # exactly 2.0 for e = 1, as in the elastic reflection
         self.v[i] = [v[0] - k * vn * n[0], v[1] - k * vn * n[1]]
         self._release(i)
         self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
-        self.t_last[i] = self.time
+        self._note(i)
         self.wall_collisions += 1
+        if self.rest is not None:
+            self._lift_segment(i, part, a, b)
+            self._settle(i)
 
     def _heat(self, i, wall, n):
         """Disk ``i`` leaves heated ``wall`` (normal ``n`` into the box)."""
@@ -197,7 +239,10 @@ class CollisionRules:
         self.resting[k] = {side for side in self.resting[k] if self.v[k][side // 2] == 0.0}
 
     def _holds(self):
-        """Whether walls hold disks at rest: some coefficient below 1, and tc > 0."""
+        """Whether walls hold disks at rest by the TC model: some coefficient below 1,
+        and tc > 0, where disks do not come to rest (which holds them otherwise)."""
+        if self.rest is not None:
+            return False
         table = (self.restitution if isinstance(self.restitution, list)
                  else [[self.restitution]])
         inelastic = self.wall_restitution < 1.0 or any(e < 1.0 for row in table for e in row)

@@ -1,0 +1,179 @@
+"""Disks at rest: the brute-force reference against closed-form results and the engine.
+
+The reference's rules for disks at rest (``edmd2d/reference/_resting.py``) are written
+apart from the engine's; here a bounce to rest is checked against its closed form, and
+small systems that settle, are hit and settle again are run in both, event for event.
+
+Why these windows: a disk pressed between a floor and a disk above it, both moving,
+bounces between them ever faster (a chatter, thousands of contacts in a thousandth of a
+time unit), and each bounce multiplies a difference of rounding between two
+arithmetics: two exact engines then part ways within a few hundred contacts.  Each
+random system below is compared up to a time before such a chatter; over each window
+the largest difference of event times measured is 9e-12, a hundred times below the
+tolerance of 1e-9, and the reference notes no close call (a decision within rounding of
+its threshold, ``close_calls``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import edmd2d as ed
+from conftest import random_system
+from edmd2d.physics import Resting
+from edmd2d.reference import ReferenceSimulation
+
+MODEL = dict(restitution=0.6, wall_restitution=0.5)
+
+
+def _canonical(events):
+    """Pairs unordered; the rests (wakes) of one instant in the order of their disks:
+    the engine logs a pair from the disk whose prediction fired, and a cascade or a
+    group in the order it finds them."""
+    out = [(t, k, min(i, j), max(i, j)) if k == "disk" else (t, k, i, j)
+           for t, k, i, j in events]
+    result = []
+    k = 0
+    while k < len(out):
+        m = k + 1
+        if out[k][1] in ("rest", "wake"):
+            while m < len(out) and out[m][1] == out[k][1] and out[m][0] == out[k][0]:
+                m += 1
+        result.extend(sorted(out[k:m], key=lambda e: e[2]))
+        k = m
+    return result
+
+
+def _pair(pos, vel, rad, mass, box, walls):
+    """The engine and the reference on one system, the reference with the engine's
+    criteria of rest and its TC model's ``tc``."""
+    sim = ed.Simulation(pos, vel, rad, mass, box=box, walls=walls, gravity=(0.0, -1.0),
+                        **MODEL)
+    sim._record_events(100_000)
+    ref = ReferenceSimulation(pos, vel, rad, mass, box=box, walls=walls,
+                              gravity=(0.0, -1.0), resting=sim._state.families["resting"],
+                              tc=float(sim._state.model.tc), **MODEL)
+    return sim, ref
+
+
+def _assert_same_run(sim, ref, close_calls=False):
+    """The same events (times to 1e-9), state, rests, wakes and energy books; and
+    no close call in the reference unless ``close_calls``."""
+    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
+    assert [e[1:] for e in got] == [e[1:] for e in want]
+    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0,
+                               atol=1e-9)
+    assert close_calls or ref.close_calls == []
+    np.testing.assert_allclose(sim.positions, ref.positions, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-9)
+    np.testing.assert_array_equal(sim.resting, ref.at_rest)
+    assert sim.counts.rests == ref.rests
+    assert sim.counts.wakes == ref.wakes
+    assert sim.total_energy() + sim.dissipated_energy() == pytest.approx(
+        ref.total_energy() + ref.dissipated, rel=1e-12)
+    return got
+
+
+def test_a_bounce_to_rest_on_the_floor_in_closed_form():
+    # Dropped from h = 2 above the floor (g = 1, e_w = 1/2): impacts at speed
+    # v_k = 2^-k v_0, v_0 = 2, at t_0 = 2 and t_(k+1) = t_k + 2 v_(k+1) / g.  The
+    # rebound e v_k first falls below the rest speed sqrt(2 g h_r) = sqrt(2e-3) at the
+    # sixth impact (1/32 < 0.0447 < 1/16): the disk slides, with no speed left, on a flat
+    # floor that holds it, and comes to rest there, at t_5 = 2 + 4 (1 - 2^-5) = 5.875.
+    rest = Resting.of(1e-3, 1.0, 0.5)
+    ref = ReferenceSimulation([[3.0, 2.5]], [[0.0, 0.0]], radii=0.5,
+                              box=ed.Box(6.0, 6.0, periodic=False), gravity=(0.0, -1.0),
+                              wall_restitution=0.5, resting=rest)
+    ref.advance(until=10.0)
+    times = [2.0 + 4.0 * (1.0 - 0.5 ** k) for k in range(6)]
+    assert [e[1:] for e in ref.events] == [("box", 0, 2)] * 6 + [("rest", 0, -1)]
+    np.testing.assert_allclose([e[0] for e in ref.events], times + [times[-1]], rtol=1e-13)
+    assert ref.at_rest == [True] and ref.rests == 1
+    assert ref.positions[0, 1] == pytest.approx(0.5, abs=1e-12)
+    # All its potential energy m g h = 2 is dissipated; at rest it has no velocity.
+    assert ref.dissipated == pytest.approx(2.0, rel=1e-12)
+    assert ref.velocities.tolist() == [[0.0, 0.0]]
+
+
+def test_a_disk_on_one_support_is_not_held_but_on_two_it_is():
+    # Two disks settle on the floor (from 5e-4 above it) in the corners of a box 2.2
+    # wide, 0.2 apart.  A third, dropped into the groove between them, meets both at one
+    # instant and rests there, on both: the impact pushes each into the corner of the
+    # floor and its side wall, which takes it, so they stay at rest.  Dropped onto the
+    # top of one of them, a little off its centre, it does not rest there (one support
+    # does not hold it without friction): it rolls off into the groove and rests there.
+    rest = Resting.of(1e-3, 1.0, 0.5)
+    box = ed.Box(2.2, 6.0, periodic=False)
+
+    def dropped(x):
+        ref = ReferenceSimulation([[0.5, 0.5005], [1.7, 0.5005], [x, 2.0]],
+                                  [[0.0, 0.0]] * 3, radii=0.5, box=box,
+                                  gravity=(0.0, -1.0), restitution=0.5,
+                                  wall_restitution=0.5, resting=rest)
+        return ref.advance(until=30.0)
+
+    for x in (1.1, 1.69):
+        ref = dropped(x)
+        assert ref.at_rest == [True, True, True]
+        assert sorted(ref.supports[2][:2]) == [0, 1]
+        assert ref.positions[2].tolist() == pytest.approx([1.1, 0.5 + 0.8], abs=1e-3)
+        assert [e[1] for e in ref.events].count("wake") == 0
+        # (From 1.69 it bounces on the top of disk 1 before it rolls off.)
+        hits = [e for e in ref.events if e[1] == "disk"]
+        assert len(hits) >= (2 if x == 1.1 else 3)
+
+
+SETTLING = [(0, "none", 8.5), (3, "none", 5.7), (6, "none", 6.5), (7, "none", 8.2),
+            (1, "divider", 5.3), (2, "divider", 9.6), (4, "polygon", 5.8),
+            (7, "polygon", 6.4)]
+
+
+def _walls(kind, box):
+    w, h = box.width, box.height
+    if kind == "divider":
+        return [ed.Wall((0.5 * w, 0.25 * h), (0.5 * w, 0.75 * h))]
+    if kind == "polygon":
+        return ed.Wall.polygon([(0.2 * w, 0.2 * h), (0.45 * w, 0.25 * h),
+                                (0.3 * w, 0.45 * h)]) + [
+            ed.Wall((0.6 * w, 0.9 * h), (0.95 * w, 0.6 * h))]
+    return []
+
+
+@pytest.mark.parametrize("seed, walls_kind, t_end", SETTLING)
+def test_random_systems_settle_as_in_the_reference(seed, walls_kind, t_end):
+    """Eight disks of mixed sizes fall into a walled box (with a wall segment with a
+    gap, or a triangle and a slanted segment): they come to rest on the floor, on
+    walls and on each other, are hit and woken, and settle again (4 to 14 rests and 1
+    to 8 wakes in each window)."""
+    rng = np.random.default_rng(seed)
+    box = ed.Box(rng.uniform(4.0, 7.0), rng.uniform(4.0, 7.0), periodic=False)
+    walls = _walls(walls_kind, box)
+    pos, vel, rad, mass = random_system(rng, 8, box, walls)
+    sim, ref = _pair(pos, vel, rad, mass, box, walls)
+    sim.advance(until=t_end)
+    ref.advance(until=t_end)
+    events = _assert_same_run(sim, ref)
+    assert sum(e[1] == "rest" for e in events) >= 4
+    assert sum(e[1] == "wake" for e in events) >= 1
+
+
+def test_a_settled_bed_hit_from_above_wakes_and_settles_again():
+    # Four disks settle on the floor; a fifth, released at height 17, lands among them
+    # at t ~ 5.6 at a speed of 4, far above the speed that wakes a disk, and they
+    # settle again.
+    pos = [[1.2, 0.9], [2.4, 1.3], [3.9, 0.7], [4.5, 2.2], [2.0, 17.0]]
+    vel = [[0.3, 0.0], [-0.2, 0.1], [0.0, 0.4], [-0.5, 0.0], [0.0, 0.0]]
+    sim, ref = _pair(pos, vel, 0.5, 1.0, ed.Box(6.0, 18.0, periodic=False), [])
+    sim.advance(until=5.5)
+    ref.advance(until=5.5)
+    _assert_same_run(sim, ref)
+    sim.advance(until=20.0)
+    ref.advance(until=20.0)
+    # (Disks sliding on the floor meet others at rest there side by side, their normal
+    # level to rounding: whether gravity presses them together is a close call, which
+    # both engines take alike here, as the agreement of every event shows.)
+    events = _assert_same_run(sim, ref, close_calls=True)
+    after = [e for e in events if e[0] > 5.5]
+    assert any(e[1] == "wake" for e in after) and any(e[1] == "rest" for e in after)
+    assert sum(ref.at_rest) >= 4

@@ -4,14 +4,13 @@ The reference's rules for disks at rest (``edmd2d/reference/_resting.py``) are w
 apart from the engine's; here a bounce to rest is checked against its closed form, and
 small systems that settle, are hit and settle again are run in both, event for event.
 
-Why these windows: a disk pressed between a floor and a disk above it, both moving,
-bounces between them ever faster (a chatter, thousands of contacts in a thousandth of a
-time unit), and each bounce multiplies a difference of rounding between two
-arithmetics: two exact engines then part ways within a few hundred contacts.  Each
-random system below is compared up to a time before such a chatter; over each window
-the largest difference of event times measured is 9e-12, a hundred times below the
-tolerance of 1e-9, and the reference notes no close call (a decision within rounding of
-its threshold, ``close_calls``).
+Why these windows: disks that settle together meet in quick runs of contacts (a disk
+sinking between two others, a pile shifting), and each contact of such a run
+multiplies a difference of rounding between two arithmetics: two exact engines part
+ways in the end.  Each random system below is compared up to a time before its
+differences grow: over each window the largest difference of event times measured is
+1e-11, a hundred times below the tolerance of 1e-9, and the reference notes no close
+call (a decision within rounding of its threshold, ``close_calls``).
 """
 
 from __future__ import annotations
@@ -124,9 +123,9 @@ def test_a_disk_on_one_support_is_not_held_but_on_two_it_is():
         assert len(hits) >= (2 if x == 1.1 else 3)
 
 
-SETTLING = [(0, "none", 8.5), (3, "none", 5.7), (6, "none", 6.5), (7, "none", 8.2),
-            (1, "divider", 5.3), (2, "divider", 9.6), (4, "polygon", 5.8),
-            (7, "polygon", 6.4)]
+SETTLING = [(0, "none", 8.98), (3, "none", 5.9), (6, "none", 6.75), (7, "none", 8.55),
+            (0, "divider", 7.6), (1, "divider", 5.65), (2, "divider", 9.85),
+            (4, "polygon", 6.0)]
 
 
 def _walls(kind, box):
@@ -144,8 +143,8 @@ def _walls(kind, box):
 def test_random_systems_settle_as_in_the_reference(seed, walls_kind, t_end):
     """Eight disks of mixed sizes fall into a walled box (with a wall segment with a
     gap, or a triangle and a slanted segment): they come to rest on the floor, on
-    walls and on each other, are hit and woken, and settle again (4 to 14 rests and 1
-    to 8 wakes in each window)."""
+    walls and on each other, are hit and woken, and settle again (5 to 18 rests and 4
+    to 16 wakes in each window)."""
     rng = np.random.default_rng(seed)
     box = ed.Box(rng.uniform(4.0, 7.0), rng.uniform(4.0, 7.0), periodic=False)
     walls = _walls(walls_kind, box)
@@ -154,8 +153,8 @@ def test_random_systems_settle_as_in_the_reference(seed, walls_kind, t_end):
     sim.advance(until=t_end)
     ref.advance(until=t_end)
     events = _assert_same_run(sim, ref)
-    assert sum(e[1] == "rest" for e in events) >= 4
-    assert sum(e[1] == "wake" for e in events) >= 1
+    assert sum(e[1] == "rest" for e in events) >= 5
+    assert sum(e[1] == "wake" for e in events) >= 4
 
 
 def test_a_settled_bed_hit_from_above_wakes_and_settles_again():

@@ -418,6 +418,55 @@ def test_a_disk_on_a_disk_on_the_floor_comes_to_rest_where_it_once_collapsed():
     assert np.hypot(*(sim.positions[0] - sim.positions[1])) >= 1.0 - 1e-9
 
 
+def test_a_pyramid_dropped_onto_the_floor_settles_where_it_once_collapsed():
+    """Six disks dropped from 0.01-0.02 above their places in a pyramid: an upper disk
+    sinks between a disk at rest and one that it pushes along the floor.  Each push
+    released that one from the floor, so they did not part at the soft speed, and
+    they met ever faster, at one instant in the end (an inelastic collapse at
+    t = 1.38); the floor now takes the push.  Three drops, shifted sideways by up to
+    a hundredth: every disk comes to rest, held."""
+    s3 = np.sqrt(3.0) / 2.0
+    for shift in (0.0, 0.004, 0.01):
+        pos = np.array([[1.5, 0.52], [2.52, 0.52], [3.54, 0.52], [2.01, 0.53 + 1.02 * s3],
+                        [3.03, 0.53 + 1.02 * s3], [2.52, 0.54 + 2.04 * s3]])
+        pos[3:, 0] += shift
+        sim = Simulation(pos, np.zeros((6, 2)), 0.5, box=Box(6.0, 12.0, periodic=False),
+                         gravity=G, restitution=0.6, wall_restitution=0.5)
+        e0 = sim.total_energy()
+        sim.advance(until=30.0)
+        assert sim.resting.all()
+        assert_held(sim)
+        assert books(sim, e0) == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize("walls_kind", ["none", "divider", "polygon"])
+def test_small_dense_drops_settle_without_a_collapse(walls_kind):
+    """Eight disks of radius 0.3 to 0.6 dropped into boxes 4 to 7 wide (restitution
+    0.6, wall restitution 0.5), with a wall segment with a gap or a triangle and a
+    slanted segment: 3 of these 24 systems stopped with an inelastic collapse (a disk
+    sinking between a disk at rest and one sliding on the floor, see the test above);
+    all come to rest, held, by t = 60 (a disk sliding slowly along the floor to a
+    corner takes longest)."""
+    from conftest import random_system
+
+    for seed in range(8):
+        rng = np.random.default_rng(seed)
+        box = Box(rng.uniform(4.0, 7.0), rng.uniform(4.0, 7.0), periodic=False)
+        w, h = box.width, box.height
+        walls = {"none": [], "divider": [edmd2d.Wall((0.5 * w, 0.25 * h), (0.5 * w, 0.75 * h))],
+                 "polygon": edmd2d.Wall.polygon([(0.2 * w, 0.2 * h), (0.45 * w, 0.25 * h),
+                                                 (0.3 * w, 0.45 * h)])
+                 + [edmd2d.Wall((0.6 * w, 0.9 * h), (0.95 * w, 0.6 * h))]}[walls_kind]
+        pos, vel, rad, mass = random_system(rng, 8, box, walls)
+        sim = Simulation(pos, vel, rad, mass, box=box, walls=walls, gravity=G,
+                         restitution=0.6, wall_restitution=0.5)
+        e0 = sim.total_energy()
+        sim.advance(until=60.0)
+        assert sim.resting.all(), (seed, walls_kind)
+        assert_held(sim)
+        assert books(sim, e0) == pytest.approx(0.0, abs=1e-12)
+
+
 def test_the_physics_module_lists_resting():
     assert physics.FAMILIES["resting"] is physics.Resting
     assert edmd2d.physics.KEYWORDS["rest_height"].kind == "length"

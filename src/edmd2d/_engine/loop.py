@@ -372,10 +372,16 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                         # A contact that rounding left not approaching exchanges nothing but
                         # is a processed contact event like any other (as for walls, and as
                         # in the reference): counted, logged, both disks re-predicted.
+                        if rest is not None:
+                            # (The walls each slid on before the collision: it may
+                            # release a disk that it pushes into its wall.)
+                            held_i = gravity.support[i]
+                            held_j = gravity.support[j]
                         response.collide_pair(i, j, t, aux, S, invm, acc, gf, contact,
                                               gravity, growth)
                         if rest is not None:
-                            resting.part(i, j, aux, S, invm, acc, gf, gravity, rest)
+                            resting.part(i, j, aux, held_i, held_j, S, invm, acc, gf,
+                                         gravity, rest)
                         stamp[i] += 1
                         stamp[j] += 1
                         redo0 = i

@@ -60,7 +60,7 @@ import math
 
 from .._jit import njit
 from . import queue
-from .flight import acceleration, drift, position_at
+from .flight import drift, position_at
 from .grid import neighbour
 from .layout import (
     A_DISSIPATED,
@@ -335,12 +335,24 @@ def slide(i, side, S, invm, acc, contact, gravity, rest):
 
 
 @njit
-def part(i, j, aux, S, invm, acc, gf, gravity, rest):
+def _sliding_acceleration(held, gravity):
+    """The acceleration of a flying disk that slides on the box walls ``held`` (bits
+    ``1 << side``): gravity less the components those walls hold."""
+    return (0.0 if held & 3 else gravity.gx), (0.0 if held & 12 else gravity.gy)
+
+
+@njit
+def part(i, j, aux, held_i, held_j, S, invm, acc, gf, gravity, rest):
     """After flying disks ``i`` and ``j`` (through the image shift ``aux``) collided:
-    if gravity presses them together (one of them slides on a box wall, so their
-    accelerations differ) and they part slower than ``rest.soft``, make them part at
-    that speed, by an impulse along their normal (momentum conserved; the kinetic
-    energy added taken from the dissipated tally, as in :func:`lift`)."""
+    if gravity presses them together (one of them slid on a box wall before the
+    collision, ``held_i`` and ``held_j`` its bits, so their accelerations differ) and
+    they part slower than ``rest.soft``, make them part at that speed, by an impulse
+    along their normal (momentum conserved; the kinetic energy added taken from the
+    dissipated tally, as in :func:`lift`).  The walls are those before the collision:
+    a collision that pushes a sliding disk into its wall releases it (it bounces off
+    the wall at once), but the wall still held the pair's push; without it a disk
+    sinking between a disk at rest and one sliding on the floor would meet that one
+    ever faster, at one instant in the end."""
     wi = invm[i]
     wj = invm[j]
     if wi == 0.0 or wj == 0.0:
@@ -348,8 +360,8 @@ def part(i, j, aux, S, invm, acc, gf, gravity, rest):
     sx, sy = unpack_shift(aux)
     nx = S[i, X] - (S[j, X] + sx * gf[0])
     ny = S[i, Y] - (S[j, Y] + sy * gf[1])
-    gxi, gyi = acceleration(i, gravity)
-    gxj, gyj = acceleration(j, gravity)
+    gxi, gyi = _sliding_acceleration(held_i, gravity)
+    gxj, gyj = _sliding_acceleration(held_j, gravity)
     if (gxi - gxj) * nx + (gyi - gyj) * ny >= 0.0:
         return
     ln = math.sqrt(nx * nx + ny * ny)

@@ -37,8 +37,8 @@ method over the plain per-disk lists:
   velocity, dissipated, removed), unless it collided at that same instant before and
   bounces faster than a thousandth of ``soft``.  After a wall segment the disk leaves
   at ``soft`` at least, if gravity presses it into the segment;
-- *parting*: two flying disks that gravity presses together (one slides on a box
-  wall) part at ``soft`` at least, by an impulse along their normal;
+- *parting*: two flying disks that gravity presses together (one slid on a box wall
+  before they collided) part at ``soft`` at least, by an impulse along their normal;
 - *groups* (:meth:`_rest_groups`): at every multiple of ``every`` (after the events at
   that time), the slow flying disks that hold one another up come to rest together.
   Which groups hold is a static question, a linear program over the contact forces,
@@ -373,13 +373,13 @@ class RestingRules:
         norm = math.hypot(*d)
         self._lift(i, (d[0] / norm, d[1] / norm))
 
-    def _part(self, i, j, shift):
-        """After flying disks ``i`` and ``j`` collided: if gravity presses them
-        together, they part at ``soft`` at least."""
+    def _part(self, i, j, shift, ai, aj):
+        """After flying disks ``i`` and ``j`` collided, with accelerations ``ai`` and
+        ``aj`` before it: if gravity presses them together (one of them slid on a box
+        wall), they part at ``soft`` at least."""
         if math.isinf(self.m[i]) or math.isinf(self.m[j]):
             return
         d = (self.p[i][0] - self.p[j][0] - shift[0], self.p[i][1] - self.p[j][1] - shift[1])
-        ai, aj = self._acceleration(i), self._acceleration(j)
         pressed = _dot((ai[0] - aj[0], ai[1] - aj[1]), d)
         if ai != aj:  # (equal accelerations, both in free fall: exactly 0)
             self._close("pressed", pressed, 0.0, math.hypot(*self.gravity) * math.hypot(*d))

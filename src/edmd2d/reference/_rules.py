@@ -101,6 +101,9 @@ class CollisionRules(RestingRules):
                 self.collisions += 1
                 self._settle(i)
                 return
+            # (The accelerations before the collision, which may release a disk that
+            # slid on a box wall: see _part.)
+            before = (self._acceleration(i), self._acceleration(j))
             sx, sy = detail
             d = (p[0] - self.p[j][0] - sx, p[1] - self.p[j][1] - sy)
             norm = math.sqrt(_dot(d, d))
@@ -137,7 +140,7 @@ class CollisionRules(RestingRules):
                 self._release(disk)
             self.collisions += 1
             if self.rest is not None:
-                self._part(i, j, detail)
+                self._part(i, j, detail, *before)
                 self._settle(i)
                 self._settle(j)
             return

@@ -467,6 +467,25 @@ def test_small_dense_drops_settle_without_a_collapse(walls_kind):
         assert books(sim, e0) == pytest.approx(0.0, abs=1e-12)
 
 
+def test_a_moving_immovable_disk_wakes_a_disk_at_rest():
+    """A disk at rest on the floor is met by an immovable disk moving towards it (a
+    piston): the impact wakes it, whatever its speed (a disk at rest cannot take the
+    impact of a body that nothing stops), and it slides ahead of the piston at
+    (1 + e) times the piston's speed."""
+    sim = Simulation([[3.0, 0.5005], [1.0, 0.5005]], [[0.0, 0.0], [0.2, 0.0]],
+                     [0.5, 0.5], [1.0, np.inf], box=Box(12.0, 5.0, periodic=False),
+                     gravity=G, restitution=0.5, wall_restitution=0.5)
+    sim.advance(until=5.0)
+    assert sim.resting[0] and sim.counts.collisions == 0
+    sim.advance(until=25.0)
+    assert sim.counts.collisions == 1 and sim.counts.wakes == 1
+    assert not sim.resting[0]
+    # (The disk settled 5e-4 lower than the piston: the normal tilts by 5e-4, which
+    # takes 2.5e-7 of the speed.)
+    assert sim.velocities[0].tolist() == pytest.approx([0.3, 0.0], abs=1e-6)
+    assert sim.positions[0, 0] > sim.positions[1, 0] + 1.0
+
+
 def test_the_physics_module_lists_resting():
     assert physics.FAMILIES["resting"] is physics.Resting
     assert edmd2d.physics.KEYWORDS["rest_height"].kind == "length"

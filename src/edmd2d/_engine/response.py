@@ -72,12 +72,9 @@ from .layout import (
 from .predict import _segment_frame, growth_factor
 
 # Two collisions of a disk count as simultaneous when their times differ by at most
-# this fraction of the time.  Contacts at one instant (a disk pressed between a floor
-# and the disk above it) are found a few units of rounding apart, 1e-15 of the time,
-# on either side of a threshold of that size: it sits four orders above, so that no
-# decision taken on it hangs on the last bits of the arithmetic, and far below any
-# physical interval (a collapse drives the intervals to zero).
-INSTANT = 1e-11
+# this fraction of the time: a few units of rounding (a collapse drives the intervals
+# to zero in floating point; any physical interval is far longer).
+INSTANT = 8.0 * 2.0 ** -52
 # Simultaneous collisions in a row of one disk at which the run stops: a finite
 # number of disks in elastic contact resolve in far fewer.
 STALL_COLLISIONS = 10_000

@@ -229,8 +229,14 @@ def meet(i, j, t, aux, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, 
     """Flying disk ``i`` meets disk ``j`` (both at ``t``; ``j`` through the image shift
     ``aux``): whether ``j`` is at rest and stays so, the impact being no faster than
     ``rest.wake``, or no faster than ``rest.press`` and held by ``j``'s static
-    contacts.  Any other impact wakes ``j`` (and what it supports) first."""
+    contacts.  Any other impact, and any by an immovable disk, wakes ``j`` (and what
+    it supports) first."""
     if not is_resting(j, gravity):
+        return False
+    if invm[i] == 0.0:
+        # An immovable disk (a piston) cannot bounce off it: it carries it along.
+        wake(j, t, j, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, nxt,
+             wa, wb, wstart, wwall, wsx, wsy, acc, counts, heated, gravity, rest)
         return False
     sx, sy = unpack_shift(aux)
     dx = S[i, X] - (S[j, X] + sx * gf[0])

@@ -25,8 +25,8 @@ method over the plain per-disk lists:
   as off an immovable disk (:meth:`_bounce_static`), and leaves it at ``soft`` at least
   (:meth:`_lift`).  If it met another static body at the same instant it is wedged and
   stops instead (its kinetic energy dissipated), to come to rest there, or leave at
-  ``soft`` if not held.  A faster impact wakes the disk first (and the cascade below),
-  and the two collide as any pair;
+  ``soft`` if not held.  A faster impact, or one by an immovable disk, wakes the
+  disk first (and the cascade below), and the two collide as any pair;
 - *wake* (:meth:`_wake`): a woken disk resumes the velocity it came to rest with (the
   kinetic energy leaving the dissipated tally again), and every disk at rest that
   counted it among its supports is examined again: if the others no longer hold it,
@@ -51,11 +51,13 @@ the wakes an event causes come before it in ``events``, the rests after it.
 Close calls.  These rules have thresholds, and a quantity within rounding of one
 decides by its last bits: two runs whose arithmetic differs (this engine and the
 compiled one) may then take different branches, both right, and part ways.  The
-sharpest would be "at the same instant": a disk pressed between a floor and the disk
-above it meets both at times a few ulps apart, which is why ``INSTANT`` lies far
-above that.  Each decision whose quantity lies within
-``CLOSE`` (relative) of its threshold is therefore noted in ``close_calls`` as
-``(time, what)``, so that a comparison can stop before the first.
+sharpest is "at the same instant" (``INSTANT``, a few units of rounding of the
+clock): a disk pressed between a floor and the disk above it meets both at times that
+rounding alone sets apart, by up to 1e-12 of the clock where the approach is slow,
+on either side of it.  Each decision whose quantity lies within ``CLOSE`` (relative)
+of its threshold is therefore noted in ``close_calls`` as ``(time, what)``, and so is
+every decision on two collisions within ``NEAR`` of each other, so that a comparison
+can stop before the first.
 """
 
 from __future__ import annotations
@@ -72,9 +74,11 @@ from ._times import _dot
 #: The supports noted per resting disk.
 MAX_SUPPORTS = 4
 #: Two times within this relative distance are one instant (a disk meeting two static
-#: bodies at one instant is wedged between them): far above the rounding of contact
-#: times, far below any physical interval.
-INSTANT = 1e-11
+#: bodies at one instant is wedged between them): a few units of rounding.
+INSTANT = 8.0 * 2.0 ** -52
+#: Two collisions within this relative distance may be one instant or not, as rounding
+#: has it (contact times at one instant lie up to 1e-12 of the clock apart).
+NEAR = 1e-10
 #: A decision is a close call when its quantity lies within this relative distance of
 #: its threshold; times within it of each other may be one instant.
 CLOSE = 1e-6
@@ -143,10 +147,10 @@ class RestingRules:
             self.close_calls.append((self.time, what))
 
     def _close_instant(self, before):
-        """Note a close call if ``before`` is as far from the present as ``INSTANT``
-        says one instant is, to within a hundredth of that (far above rounding)."""
-        threshold = INSTANT * abs(self.time)
-        self._close("instant", self.time - before, threshold, 0.01 * threshold / CLOSE)
+        """Note a close call if ``before`` lies within ``NEAR`` of the present: it may
+        be the present instant or not, as rounding has it."""
+        if self.time - before <= NEAR * abs(self.time):
+            self.close_calls.append((self.time, "instant"))
 
     # -- bodies that do not move
     def _static(self, k):
@@ -314,6 +318,9 @@ class RestingRules:
         """Flying disk ``i`` meets disk ``j``: whether ``j`` is at rest and stays so
         (see the module notes); a faster impact wakes it first."""
         if not self.at_rest[j]:
+            return False
+        if math.isinf(self.m[i]):  # (a piston carries it along)
+            self._wake(j)
             return False
         d = (self.p[i][0] - self.p[j][0] - shift[0], self.p[i][1] - self.p[j][1] - shift[1])
         norm = math.hypot(*d)

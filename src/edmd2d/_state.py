@@ -602,7 +602,8 @@ class EngineState:
         if supports is None or frozen is None or t_static is None:
             return None
         rest = self.families["resting"]
-        return _layout.Rest(rest.speed, rest.gap, rest.wake, rest.press, rest.soft, supports,
+        return _layout.Rest(rest.speed, rest.gap, rest.wake, rest.press, rest.soft,
+                            rest.instant, supports,
                             frozen, t_static,
                             np.empty(len(self.S), np.int32),
                             np.empty(_resting.CANDIDATES, np.int64),

@@ -725,6 +725,11 @@ class Resting(Family):
         coefficient of restitution of real grains tends to 1 at small impact speeds);
         without it a disk riding on one that slides along the floor would bounce ever
         lower, without end.
+    instant : float
+        ``1e-6 soft / |g|``: two contacts of a disk this close in time (besides a few
+        units of rounding of the clock) come at one instant, for the rules above (a
+        disk wedged between two static bodies stops; one pushed into a box wall by a
+        disk bounces off it rather than slide).
     every : float
         ``200 h / speed = 141 sqrt(h / |g|)`` (4.5 ``sqrt(d / |g|)`` at the default
         ``h``, ``d`` the smallest diameter): the interval of the search for groups that
@@ -835,6 +840,16 @@ class Resting(Family):
         if "press" not in state:
             state["press"] = float(state["speed"]) * float(np.sqrt(1000.0))
         return cls(**state)
+
+    @property
+    def instant(self) -> float:
+        """How far apart two contacts of a disk may lie and still count as one instant
+        (wedged between two static bodies, or pushed into a floor), besides a few units
+        of rounding of the clock: ``1e-6`` of ``soft / |g|``, the time a disk
+        leaving at the soft speed takes to stop rising.  Contact times at one instant
+        differ by rounding, up to 1e-12 of the clock measured where the approach is
+        slow; this lies far above that and far below any bounce."""
+        return 1e-6 * self.soft * 2.0 * self.height / (self.speed * self.speed)
 
     @property
     def every(self) -> float:

@@ -463,6 +463,9 @@ class Rest(NamedTuple):
     press: float
     #: Impacts with a normal speed below this are elastic (``Contact.soft``).
     soft: float
+    #: Two contacts of a disk less than this apart (besides a few units of rounding of
+    #: the clock) came at one instant, for the rules of rest (``resting.at_once``).
+    instant: float
     #: int32, shape (N, ``resting.MAX_SUPPORTS``): each resting disk's supports (disk
     #: rows, or walls: see :mod:`.resting`; -1: none).
     supports: np.ndarray

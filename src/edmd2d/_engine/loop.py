@@ -403,6 +403,9 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     status = ERR_IMMOVABLE_WALL if invm[i] == 0.0 else ERR_STALLED
                     break
                 drift(i, t, S, gravity)
+                if rest is not None:
+                    # (Its collision before this one, for resting.slide.)
+                    before = contact.t_last[i] if contact is not None else -INF
                 # (One call site: each inlined copy lengthens the first compilation.)
                 response.collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf,
                                       wa, wb, contact, heated, uniforms, gravity, growth)
@@ -414,8 +417,8 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     rest.t_static[i] = t
                     if not response.hot(kind, partner, aux, heated):
                         if kind == BOX:
-                            resting.slide(i, aux, S, invm, acc, contact, gravity,
-                                          rest)
+                            resting.slide(i, aux, t, before, S, invm, acc, contact,
+                                          gravity, rest)
                         else:
                             resting.lift_segment(i, partner, aux, S, invm, acc, gf, wa, wb,
                                                  gravity, rest)

@@ -89,11 +89,11 @@ from .layout import (
 )
 from .predict import _segment_frame
 from .response import (
+    INSTANT,
     _hold_on_wall,
     _note_collision,
     _pair_impulse,
     _release,
-    _simultaneous,
     _wall_normals,
 )
 
@@ -128,6 +128,15 @@ def _log(kind, d, t, vx, vy, invm, rest):
             log.events[k, 2] = -1
             log.impulses[k] = math.hypot(vx, vy) / invm[d]
         log.count[0] = k + 1
+
+
+@njit
+def at_once(t, before, rest):
+    """Whether a contact at ``t`` and one at ``before`` came at one instant: within a
+    few units of rounding of the clock and ``rest.instant`` of each other (contact
+    times at one instant differ by rounding, which a window of rounding size alone
+    would split by its last bits)."""
+    return t - before <= INSTANT * abs(t) + rest.instant
 
 
 @njit
@@ -269,7 +278,7 @@ def collide_static(i, j, t, aux, S, invm, acc, gf, contact, gravity, rest):
     dy = S[i, Y] - (S[j, Y] + sy * gf[1])
     dd = dx * dx + dy * dy
     s = S[i, VX] * dx + S[i, VY] * dy
-    wedged = _simultaneous(t, rest.t_static[i])
+    wedged = at_once(t, rest.t_static[i], rest)
     rest.t_static[i] = t
     if s < 0.0:
         wi = invm[i]
@@ -323,18 +332,19 @@ def lift(i, nx, ny, S, invm, acc, gravity, rest):
 
 
 @njit
-def slide(i, side, S, invm, acc, contact, gravity, rest):
-    """After disk ``i`` bounced off box wall ``side``: if gravity presses it into that
-    wall and it leaves with a normal speed below ``rest.speed``, it slides along the
-    wall instead (its normal velocity, counted as dissipated, removed) -- unless a
-    disk pushed it into the wall at that same instant and it bounces faster than a
-    thousandth of ``rest.soft`` (a slower bounce would come back within a rounding of
-    the clock).  That stays a bounce: removing the bounce of a disk under another
-    would leave the one above pressing on it, with no time between their contacts."""
+def slide(i, side, t, before, S, invm, acc, contact, gravity, rest):
+    """After disk ``i`` bounced off box wall ``side`` at ``t`` (its collision before
+    that at ``before``): if gravity presses it into that wall and it leaves with a
+    normal speed below ``rest.speed``, it slides along the wall instead (its normal
+    velocity, counted as dissipated, removed) -- unless a disk pushed it into the wall
+    at that same instant (:func:`at_once`) and it bounces faster than a thousandth of
+    ``rest.soft`` (a slower bounce would come back within a rounding of the clock).
+    That stays a bounce: removing the bounce of a disk under another would leave the
+    one above pressing on it, with no time between their contacts."""
     axis, g_n, vn = _wall_normals(i, side, S, gravity)
     if g_n >= 0.0:
         return
-    if vn > 1e-3 * rest.soft and contact is not None and contact.streak[i] > 0:
+    if vn > 1e-3 * rest.soft and contact is not None and at_once(t, before, rest):
         return  # (pushed: its collision before this one came at the same time)
     if vn < rest.speed:
         _hold_on_wall(i, side, axis, vn, S, invm, acc, gravity)

@@ -86,7 +86,7 @@ class ReferenceSimulation(CollisionRules):
         distance): ``vn' = 2 dd - vn``, elastic in the frame of the growing rims.
     resting : edmd2d.physics.Resting, optional
         Disks come to rest under gravity with these criteria (``speed``, ``gap``,
-        ``wake``, ``press``, ``soft`` and ``every``), by the rules written out in
+        ``wake``, ``press``, ``soft``, ``instant`` and ``every``), by the rules written out in
         ``_resting.py``; the TC model then holds no disk on a box wall.  Pass the
         engine's own (``Simulation`` holds it when disks rest) to compare the two.
 
@@ -253,7 +253,6 @@ class ReferenceSimulation(CollisionRules):
         self.frozen = [(0.0, 0.0)] * n
         self.supports: list[list[int]] = [[] for _ in range(n)]
         self.t_static = [-INF] * n
-        self.streak = [0] * n
         self.t_before = [-INF] * n
         self.close_calls: list[tuple[float, str]] = []
         self.rests = 0

@@ -50,14 +50,14 @@ the wakes an event causes come before it in ``events``, the rests after it.
 
 Close calls.  These rules have thresholds, and a quantity within rounding of one
 decides by its last bits: two runs whose arithmetic differs (this engine and the
-compiled one) may then take different branches, both right, and part ways.  The
-sharpest is "at the same instant" (``INSTANT``, a few units of rounding of the
-clock): a disk pressed between a floor and the disk above it meets both at times that
-rounding alone sets apart, by up to 1e-12 of the clock where the approach is slow,
-on either side of it.  Each decision whose quantity lies within ``CLOSE`` (relative)
-of its threshold is therefore noted in ``close_calls`` as ``(time, what)``, and so is
-every decision on two collisions within ``NEAR`` of each other, so that a comparison
-can stop before the first.
+compiled one) may then take different branches, both right, and part ways.  Each
+decision whose quantity lies within ``CLOSE`` (relative) of its threshold is noted in
+``close_calls`` as ``(time, what)``, so that a comparison can stop before the first.
+"At one instant" (a disk wedged between two static bodies, or pushed into a floor)
+is the sharpest: contact times at one instant differ by rounding, up to 1e-12 of the
+clock where the approach is slow, so the window (:meth:`_at_once`) adds the
+criteria's ``instant`` (1e-6 of ``soft / |g|``) to a few units of rounding; two
+contacts within a factor 10 of that window are a close call.
 """
 
 from __future__ import annotations
@@ -76,9 +76,6 @@ MAX_SUPPORTS = 4
 #: Two times within this relative distance are one instant (a disk meeting two static
 #: bodies at one instant is wedged between them): a few units of rounding.
 INSTANT = 8.0 * 2.0 ** -52
-#: Two collisions within this relative distance may be one instant or not, as rounding
-#: has it (contact times at one instant lie up to 1e-12 of the clock apart).
-NEAR = 1e-10
 #: A decision is a close call when its quantity lies within this relative distance of
 #: its threshold; times within it of each other may be one instant.
 CLOSE = 1e-6
@@ -101,7 +98,6 @@ class RestingRules:
     ``None``), and per disk ``at_rest``, ``frozen`` (the velocity it came to rest
     with), ``supports`` (codes: a disk's index, ``-2 - side`` for a box wall, ``-6 - k``
     for segment ``k``), ``t_static`` (its last contact with a static body) and
-    ``streak`` (how many collisions in a row it had at one instant) and
     ``t_before`` (the time of its collision before the last); the tallies
     ``rests`` and ``wakes``; and the lists ``_woken`` and ``_rested`` of the rests and
     wakes of the event being resolved.
@@ -125,7 +121,6 @@ class RestingRules:
     frozen: list[tuple[float, float]]
     supports: list[list[int]]
     t_static: list[float]
-    streak: list[int]
     t_last: list[float]
     t_before: list[float]
     rests: int
@@ -147,9 +142,10 @@ class RestingRules:
             self.close_calls.append((self.time, what))
 
     def _close_instant(self, before):
-        """Note a close call if ``before`` lies within ``NEAR`` of the present: it may
-        be the present instant or not, as rounding has it."""
-        if self.time - before <= NEAR * abs(self.time):
+        """Note a close call if ``before`` lies within a factor 10 of the window of
+        :meth:`_at_once` from the present."""
+        window = INSTANT * abs(self.time) + self.rest.instant
+        if 0.1 * window < self.time - before < 10.0 * window:
             self.close_calls.append((self.time, "instant"))
 
     # -- bodies that do not move
@@ -342,7 +338,7 @@ class RestingRules:
         norm = math.hypot(*d)
         n = (d[0] / norm, d[1] / norm)
         before = self.t_static[i]
-        wedged = self._instant(before)
+        wedged = self._at_once(before)
         self.t_static[i] = self.time
         vn = _dot(self.v[i], n)
         if vn < 0.0:
@@ -417,10 +413,9 @@ class RestingRules:
             return
         vn = self.v[i][axis] * inward
         if vn > 1e-3 * self.rest.soft:
-            # (Whether it collided at this same instant before is a close call when
-            # the times were within CLOSE of each other.)
+            # (Pushed: its collision before this one came at the same instant.)
             self._close_instant(self.t_before[i])
-            if self.streak[i] > 0:
+            if self._at_once(self.t_before[i]):
                 return
         self._close("speed", vn, self.rest.speed, self.rest.speed)
         if vn < self.rest.speed:
@@ -445,15 +440,17 @@ class RestingRules:
         self._release(i)
 
     # -- the clock of collisions
-    def _instant(self, before):
-        """Whether ``before`` is the present instant (to rounding)."""
-        return self.time - before <= INSTANT * abs(self.time)
+    def _at_once(self, before):
+        """Whether a contact at ``before`` and one now came at one instant, for the
+        rules of rest: within a few units of rounding of the clock and the criteria's
+        ``instant`` of each other (contact times at one instant differ by rounding, up
+        to 1e-12 of the clock)."""
+        return self.time - before <= INSTANT * abs(self.time) + self.rest.instant
 
     def _note(self, k):
-        """Movable disk ``k`` collided now: its clock of the TC model and its streak."""
+        """Movable disk ``k`` collided now: its clock of the TC model."""
         if math.isinf(self.m[k]):
             return
-        self.streak[k] = self.streak[k] + 1 if self._instant(self.t_last[k]) else 0
         self.t_before[k] = self.t_last[k]
         self.t_last[k] = self.time
 

@@ -337,8 +337,8 @@ def slide(i, side, t, before, S, invm, acc, contact, gravity, rest):
     that at ``before``): if gravity presses it into that wall and it leaves with a
     normal speed below ``rest.speed``, it slides along the wall instead (its normal
     velocity, counted as dissipated, removed) -- unless a disk pushed it into the wall
-    at that same instant (:func:`at_once`) and it bounces faster than a thousandth of
-    ``rest.soft`` (a slower bounce would come back within a rounding of the clock).
+    at that same instant (its collision before this one came at once, :func:`at_once`)
+    and it bounces faster than a thousandth of ``rest.soft`` (a slower one slides).
     That stays a bounce: removing the bounce of a disk under another would leave the
     one above pressing on it, with no time between their contacts."""
     axis, g_n, vn = _wall_normals(i, side, S, gravity)

@@ -54,10 +54,11 @@ compiled one) may then take different branches, both right, and part ways.  Each
 decision whose quantity lies within ``CLOSE`` (relative) of its threshold is noted in
 ``close_calls`` as ``(time, what)``, so that a comparison can stop before the first.
 "At one instant" (a disk wedged between two static bodies, or pushed into a floor)
-is the sharpest: contact times at one instant differ by rounding, up to 1e-12 of the
-clock where the approach is slow, so the window (:meth:`_at_once`) adds the
-criteria's ``instant`` (1e-6 of ``soft / |g|``) to a few units of rounding; two
-contacts within a factor 10 of that window are a close call.
+is the sharpest: contact times at one instant differ by rounding, measured up to
+3e-12 time units where the approach is slow (g = 1, unit diameters, clock ~ 5), so
+the window (:meth:`_at_once`) adds the criteria's ``instant`` (1e-6 of ``soft / |g|``)
+to a few units of rounding; two contacts within a factor 10 of that window are a close
+call.
 """
 
 from __future__ import annotations
@@ -73,11 +74,11 @@ from ._times import _dot
 
 #: The supports noted per resting disk.
 MAX_SUPPORTS = 4
-#: Two times within this relative distance are one instant (a disk meeting two static
-#: bodies at one instant is wedged between them): a few units of rounding.
+#: A few units of rounding of the clock, relative: with the criteria's ``instant``,
+#: the window within which two contacts of a disk come at one instant (:meth:`_at_once`).
 INSTANT = 8.0 * 2.0 ** -52
 #: A decision is a close call when its quantity lies within this relative distance of
-#: its threshold; times within it of each other may be one instant.
+#: its threshold.
 CLOSE = 1e-6
 
 
@@ -341,8 +342,8 @@ class RestingRules:
         wedged = self._at_once(before)
         self.t_static[i] = self.time
         vn = _dot(self.v[i], n)
+        self._close_instant(before)  # (wedged or not decides the lift, too)
         if vn < 0.0:
-            self._close_instant(before)
             if wedged:
                 self.dissipated += 0.5 * self.m[i] * _dot(self.v[i], self.v[i])
                 self.v[i] = [0.0, 0.0]
@@ -443,8 +444,7 @@ class RestingRules:
     def _at_once(self, before):
         """Whether a contact at ``before`` and one now came at one instant, for the
         rules of rest: within a few units of rounding of the clock and the criteria's
-        ``instant`` of each other (contact times at one instant differ by rounding, up
-        to 1e-12 of the clock)."""
+        ``instant`` of each other (contact times at one instant differ by rounding)."""
         return self.time - before <= INSTANT * abs(self.time) + self.rest.instant
 
     def _note(self, k):

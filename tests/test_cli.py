@@ -317,6 +317,49 @@ end = [0.05, 20.0]
     assert len(across) and not any(tuple(p) in kept for p in across.tolist())
 
 
+GATE = CONFIG.replace("temperature = 1.0\n", """temperature = 1.0
+periodic = [true, false]
+""").replace("[model]\n", """[model]
+gravity = [0.0, -1.0]
+restitution = 0.9
+""").replace("[output]\ngsd_every = 1.0\ncheckpoint_every = 2.5\n", "") + """
+[[walls]]
+polygon = [[1.0, 1.0], [3.0, 1.0], [2.0, 3.0]]
+open = true
+[[walls]]
+start = [0.0, 8.0]
+end = [20.0, 8.0]
+opens_at = 3.0
+"""
+
+
+def test_walls_that_start_open_or_open_during_the_run(tmp_path):
+    """A triangle that starts open (its three sides), and a segment across the box that
+    opens at t = 3: closed before, open after, also across a resume."""
+    sim, _ = config.build(config.loads(GATE), seed=seed_of(5))
+    assert sim.open_walls.tolist() == [True, True, True, False]
+    out = tmp_path / "out"
+    assert run(["run", write(tmp_path, GATE), "-o", out, "--until", "2.5",
+                "--no-progress"]) == 0
+    before = ed.checkpoint.load(out / "checkpoint.edmd2d")
+    assert before.time == 2.5 and before.open_walls.tolist() == [True, True, True, False]
+    assert run(["resume", out / "checkpoint.edmd2d", "--no-progress"]) == 0
+    after = ed.checkpoint.load(out / "checkpoint.edmd2d")
+    assert after.time == 6.0 and after.open_walls.tolist() == [True, True, True, True]
+
+
+@pytest.mark.parametrize("wall, word", [
+    ("start = [0.0, 8.0]\nend = [20.0, 8.0]\nopen = true\nopens_at = 3.0",
+     r"walls\[0\].opens_at: a wall that starts open"),
+    ("start = [0.0, 8.0]\nend = [20.0, 8.0]\nopens_at = -1.0",
+     r"walls\[0\].opens_at: must be >= 0"),
+    ("start = [0.0, 8.0]\nend = [20.0, 8.0]\nopen = 1", r"walls\[0\].open"),
+])
+def test_bad_wall_openings_are_refused_by_name(wall, word):
+    with pytest.raises(config.ConfigError, match=word):
+        config.loads(CONFIG + "\n[[walls]]\n" + wall + "\n")
+
+
 def test_the_progress_bar_is_shown_unless_asked_not_to(tmp_path, capsys):
     text = CONFIG.replace("[output]\ngsd_every = 1.0\ncheckpoint_every = 2.5\n", "")
     assert run(["run", write(tmp_path, text), "-o", tmp_path / "out"]) == 0

@@ -257,6 +257,10 @@ class RunProtocol:
                 ops.append(_op.Checkpoint(self.path, _op.Every(dt=out["checkpoint_every"],
                                                                start=t0),
                                           metadata=self._metadata))
+            for time, segments in self.meta.get("wall_openings", []):
+                # (A gate opening during the run: opening an open segment changes
+                # nothing, so a run resumed after it is left as it was.)
+                ops.append(_op.Callback(_opener(segments), _op.At([time])))
             if out.get("checkpoint_minutes") is not None:
                 ops.append(_op.Checkpoint(
                     self.path, _op.Every(seconds=60.0 * out["checkpoint_minutes"]),
@@ -297,3 +301,10 @@ class RunProtocol:
             return None
         return self.measure.result()
 
+
+def _opener(segments: list[int]) -> Callable:
+    """A callback that opens the wall ``segments`` of the simulation it is given."""
+    def open_them(sim) -> None:
+        for k in segments:
+            sim.open_wall(k)
+    return open_them

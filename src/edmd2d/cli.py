@@ -59,6 +59,7 @@ from . import config as _config
 from . import progress as _progress
 from ._runs import DONE, FAILED, INTERRUPTED, RunProtocol
 from ._version import __version__
+from .config._build import wall_openings
 from .io import gsd as _gsd
 
 __all__ = ["main", "UserError", "CONFIG_FILE", "GSD_FILE", "CHECKPOINT_FILE",
@@ -261,7 +262,8 @@ def _cmd_run(args) -> int:
     meta = RunProtocol.start(sim, {
         "format": _RUN_FORMAT, "version": _RUN_VERSION, "edmd2d": __version__,
         "config": cfg.data, "config_file": str(args.config), "seed": seed,
-        "removed_disks": removed, "rows": [], "wall_seconds": 0.0}, run)
+        "removed_disks": removed, "rows": [], "wall_seconds": 0.0,
+        "wall_openings": wall_openings(cfg.data["walls"])[1]}, run)
     meta["end"] = meta["window_start"] + run["duration"]
     if removed:
         _say(f"{removed} disks of the lattice start crossed wall segments and were left "

@@ -35,6 +35,10 @@ and ``packing_fraction``, and ``[run]`` with ``duration``, are required::
     end = [10.0, 8.0]
     [[walls]]                  # ... or a closed polygon
     polygon = [[2.0, 2.0], [6.0, 2.0], [4.0, 5.0]]
+    [[walls]]                  # a gate, closed at the start, open from t = 40 on
+    start = [4.0, 6.0]         # (or open = true: open from the start, to close
+    end = [6.0, 6.0]           # later from Python with Simulation.close_wall)
+    opens_at = 40.0
 
     [run]
     equilibrate = 20.0         # simulated time run before measuring

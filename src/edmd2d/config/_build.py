@@ -32,6 +32,24 @@ def _key_of_argument(exc: BaseException) -> tuple:
     return _ARGUMENT_KEYS.get(name, ())
 
 
+def wall_openings(walls: list) -> tuple[list[int], list[tuple[float, list[int]]]]:
+    """The segments of the checked ``[[walls]]`` tables ``walls`` that start open, and
+    when the others open: ``(open_at_start, [(time, segments), ...])``, the segments
+    by their index in the simulation (a polygon's sides in order, table after table).
+    """
+    start, later = [], []
+    k = 0
+    for w in walls:
+        count = len(w["polygon"]) if w["polygon"] is not None else 1
+        segments = list(range(k, k + count))
+        k += count
+        if w["open"]:
+            start.extend(segments)
+        elif w["opens_at"] is not None:
+            later.append((float(w["opens_at"]), segments))
+    return start, later
+
+
 def build(cfg: RunConfig,
           seed: int | np.random.SeedSequence | None) -> tuple[Simulation, int]:
     """The simulation a configuration describes, at time 0.
@@ -94,6 +112,7 @@ def build(cfg: RunConfig,
                 walls.extend(Wall.polygon(w["polygon"]))
             else:
                 walls.append(Wall(tuple(w["start"]), tuple(w["end"])))
+        open_at_start, _ = wall_openings(cfg.data["walls"])
         # (The rule of make_gas(walls=...); the species are labelled before, on the
         # whole lattice, so that each keeps its count there.)
         keep = builders.clear_of_walls(pos, rad, walls, start.box)
@@ -101,6 +120,7 @@ def build(cfg: RunConfig,
             raise cfg.error(("walls",), "the wall segments cross every disk of the gas")
         sim = Simulation(
             pos[keep], vel[keep], rad[keep], mass[keep], box=start.box, walls=walls,
+            open_walls=open_at_start,
             species=None if labels is None else labels[keep], seed=rng,
             **_physics_keywords(model))
     except (TypeError, ValueError) as exc:

@@ -152,5 +152,8 @@ def _check_walls(cfg, walls) -> None:
         if segment == (row["polygon"] is not None) or (segment and None in (row["start"],
                                                                             row["end"])):
             raise cfg.error(("walls", k), "give either start and end, or polygon")
+        if row["open"] and row["opens_at"] is not None:
+            raise cfg.error(("walls", k, "opens_at"),
+                            "a wall that starts open (open = true) cannot open later")
         rows.append(row)
     cfg.data["walls"] = rows

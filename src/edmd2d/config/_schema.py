@@ -218,6 +218,8 @@ _WALL = {
     "start": (_vector(), OPTIONAL),
     "end": (_vector(), OPTIONAL),
     "polygon": (_polygon, OPTIONAL),
+    "open": (_switch, False),
+    "opens_at": (_number(0.0), OPTIONAL),
 }
 _RUN = {
     "equilibrate": (_number(0.0), 0.0),

@@ -108,3 +108,22 @@ def test_the_supports_kept_are_the_disks_under_each_disk_first():
             assert supports[k, 0] == -2 - 2  # (the floor)
         else:
             assert sorted(supports[k, :len(below)].tolist()) == sorted(below), (i, below)
+
+
+def test_a_member_that_cannot_be_held_is_peeled_off_and_the_rest_is_held():
+    # A and B stand on the floor in the corners of a box 2.8 wide, C in the groove
+    # between them, and D leans on C alone, its contact 30 degrees off the vertical:
+    # nothing balances D, so the group of four is not held; without D, the three hold
+    # one another (A and B pinned by the side walls) and come to rest.
+    c = np.array([1.4, 0.5 + np.sqrt(1.0 - 0.9 ** 2)])
+    pos = np.array([[0.5, 0.5], [2.3, 0.5], c, c + [-0.5, np.sqrt(0.75)]])
+    rows, supports = groups(pos, Box(2.8, 10.0, periodic=False))
+    assert sorted(rows.tolist()) == [0, 1, 2]
+    assert sorted(supports[list(rows).index(2)][:2].tolist()) == [0, 1]
+    # Peeling off stops there: D alone is in no group held.
+    old = _balance.PEELS
+    try:
+        _balance.PEELS = 1  # (the group itself only)
+        assert len(groups(pos, Box(2.8, 10.0, periodic=False))[0]) == 0
+    finally:
+        _balance.PEELS = old

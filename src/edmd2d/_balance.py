@@ -24,6 +24,14 @@ A group is held (:func:`_held`) when it is
   sliding along a frictionless floor lowers nothing (a neutral motion, allowed as a
   disk on a flat floor is held).
 
+A group that is not held may hold in part: in a settling bed a cluster of slow disks
+often has a member lifted off its support for a moment, or leaning on a fast disk
+outside the group, and nothing balances that member's weight.  :func:`_peel` drops
+the members the least-squares balance leaves with more than ``UNHELD`` of their
+weight, and the parts that the rest's mutual contacts still join are examined in
+turn, up to ``PEELS`` in all per group (a member that loses its support this way is
+dropped at the next try).  Each part held satisfies both conditions by itself.
+
 Both come from one linear program, the balance that loads the most contacts
 (``scipy.optimize.linprog``, HiGHS), and the singular values of the loaded contacts'
 normals (the floppy modes) and their tangents.  The supports kept for each member are
@@ -57,6 +65,13 @@ RIGID_TOL = 1e-9
 #: The largest sideways motion of a curved contact in a floppy mode (of unit norm) that
 #: counts as none: such a mode is neutral.
 NEUTRAL_TOL = 1e-7
+#: The residual force, relative to its weight, above which a member of a group not
+#: held is peeled off it (:func:`_peel`): far above the residual of a group held (1e-14)
+#: and of the balance's tolerance ``TOL``.
+UNHELD = 1e-3
+#: The most groups and parts of groups examined for each group found (each part peeled
+#: off a group not held is examined in turn).
+PEELS = 20
 #: The inward unit normal of each box wall (x = 0, x = width, y = 0, y = height).
 _BOX_NORMALS = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]])
 
@@ -149,20 +164,68 @@ def held_groups(pos, vel, rad, mass, static, movable, box: Box, ends, cold_sides
     firsts = np.searchsorted(label[a][order], groups)
     lasts = np.append(firsts[1:], len(order))
     for g0, g1, lo, hi in zip(starts, ends_, firsts, lasts):
-        members = slow_rows[g0:g1]
-        contacts = order[lo:hi]
-        if len(contacts) == 0:
-            continue  # (in free flight: nothing holds it)
-        forces = _held(members, a[contacts], b[contacts], normals[contacts],
-                       curved[contacts], mass, gravity, tol)
-        if forces is None:
-            continue
-        rows_out.append(members)
-        sup_out.append(_supports(members, a[contacts], codes[contacts], b[contacts],
-                                 normals[contacts], forces, gravity))
+        todo = [(slow_rows[g0:g1], order[lo:hi])]
+        for _ in range(PEELS):
+            if not todo:
+                break
+            members, contacts = todo.pop()
+            if len(contacts) == 0:
+                continue  # (in free flight: nothing holds it)
+            forces = _held(members, a[contacts], b[contacts], normals[contacts],
+                           curved[contacts], mass, gravity, tol)
+            if forces is not None:
+                rows_out.append(members)
+                sup_out.append(_supports(members, a[contacts], codes[contacts],
+                                         b[contacts], normals[contacts], forces, gravity))
+            elif len(members) > 1:
+                todo.extend(_peel(members, contacts, a, b, normals, mass, gravity))
     if not rows_out:
         return none
     return np.concatenate(rows_out), np.concatenate(sup_out)
+
+
+def _peel(members, contacts, a, b, normals, mass, gravity):
+    """The parts of a group not held that may hold themselves: without the members
+    that no non-negative contact forces can balance (a residual above ``UNHELD`` of
+    their weight, in the least-squares balance: a member lifted off its support for
+    a moment, or leaning on a fast disk outside the group), split into the parts
+    their mutual contacts still join, each with its contacts.  A member that loses
+    its support this way is left unbalanced in turn, and peeled at the next try."""
+    from scipy import optimize, sparse
+    from scipy.sparse import csgraph
+
+    k = len(members)
+    local = np.full(int(max(members.max(), a.max(), b.max())) + 1, -1, np.int64)
+    local[members] = np.arange(k)
+    ca, cb = a[contacts], b[contacts]
+    mutual = cb >= 0
+    cols = np.arange(len(contacts))
+    r = np.concatenate([2 * local[ca], 2 * local[ca] + 1, 2 * local[cb[mutual]],
+                        2 * local[cb[mutual]] + 1])
+    c = np.concatenate([cols, cols, cols[mutual], cols[mutual]])
+    n = normals[contacts]
+    v = np.concatenate([n[:, 0] / mass[ca], n[:, 1] / mass[ca],
+                        -n[mutual, 0] / mass[cb[mutual]], -n[mutual, 1] / mass[cb[mutual]]])
+    matrix = sparse.csr_matrix((v, (r, c)), shape=(2 * k, len(contacts)))
+    rhs = -np.tile(gravity, k)
+    fit = optimize.lsq_linear(matrix, rhs, bounds=(0.0, np.inf), method="trf",
+                              lsmr_tol="auto")
+    res = (matrix @ fit.x - rhs).reshape(k, 2)
+    bad = np.hypot(res[:, 0], res[:, 1]) > UNHELD * np.hypot(*gravity)
+    if not bad.any() or bad.all():
+        return []
+    dropped = members[bad]
+    kept = members[~bad]
+    keep = ~np.isin(ca, dropped) & ~np.isin(cb, dropped)
+    joined = keep & mutual
+    graph = sparse.coo_matrix((np.ones(int(joined.sum())),
+                               (local[ca[joined]], local[cb[joined]])), shape=(k, k))
+    _, label = csgraph.connected_components(graph, directed=False)
+    parts = []
+    for part in np.unique(label[~bad]):
+        rows = kept[label[~bad] == part]
+        parts.append((rows, contacts[keep & np.isin(ca, rows)]))
+    return parts
 
 
 def _held(members, a, b, normals, curved, mass, gravity, tol):

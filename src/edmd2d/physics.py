@@ -697,7 +697,9 @@ class Resting(Family):
     non-negative contact forces along their contact normals balance every member's
     weight, to within a millionth of it, and no motion that keeps the loaded contacts
     closed lowers the group (an arch of two frictionless disks balances, but swings
-    down: it is not held; a crystal free to slide along a frictionless floor is).
+    down: it is not held; a crystal free to slide along a frictionless floor is).  Of
+    a group not held, the parts that hold themselves once the members that nothing
+    balances are left out come to rest.
 
     On by default under gravity with an inelastic model (a coefficient of restitution
     below 1): the bounces of a disk settling on others would otherwise shrink without

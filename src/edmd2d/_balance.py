@@ -195,18 +195,10 @@ def _peel(members, contacts, a, b, normals, mass, gravity):
     from scipy.sparse import csgraph
 
     k = len(members)
-    local = np.full(int(max(members.max(), a.max(), b.max())) + 1, -1, np.int64)
-    local[members] = np.arange(k)
     ca, cb = a[contacts], b[contacts]
     mutual = cb >= 0
-    cols = np.arange(len(contacts))
-    r = np.concatenate([2 * local[ca], 2 * local[ca] + 1, 2 * local[cb[mutual]],
-                        2 * local[cb[mutual]] + 1])
-    c = np.concatenate([cols, cols, cols[mutual], cols[mutual]])
-    n = normals[contacts]
-    v = np.concatenate([n[:, 0] / mass[ca], n[:, 1] / mass[ca],
-                        -n[mutual, 0] / mass[cb[mutual]], -n[mutual, 1] / mass[cb[mutual]]])
-    matrix = sparse.csr_matrix((v, (r, c)), shape=(2 * k, len(contacts)))
+    columns, local = _columns(members, ca, cb)
+    matrix = columns(normals[contacts], 1.0 / np.repeat(mass[members], 2))
     rhs = -np.tile(gravity, k)
     fit = optimize.lsq_linear(matrix, rhs, bounds=(0.0, np.inf), method="trf",
                               lsmr_tol="auto")
@@ -228,6 +220,33 @@ def _peel(members, contacts, a, b, normals, mass, gravity):
     return parts
 
 
+def _columns(members, a, b):
+    """The matrix of a group's contacts ``a``-``b`` (``b`` a member, or -1: a static
+    body): column ``c`` holds a vector of contact ``c`` on disk ``a``'s two rows and its
+    opposite on disk ``b``'s.  Returns ``columns(vectors, scale)``, that sparse matrix
+    for one vector per contact, each row scaled by ``scale``, and ``local``, each
+    member's index in the group (its rows are ``2 local`` and ``2 local + 1``)."""
+    from scipy import sparse
+
+    k = len(members)
+    local = np.full(int(max(members.max(), a.max(), b.max())) + 1, -1, np.int64)
+    local[members] = np.arange(k)
+    m = len(a)
+    cols = np.arange(m)
+    rows_a = 2 * local[a]
+    mutual = b >= 0
+    rows_b = 2 * local[b[mutual]]
+    r = np.concatenate([rows_a, rows_a + 1, rows_b, rows_b + 1])
+    c = np.concatenate([cols, cols, cols[mutual], cols[mutual]])
+
+    def columns(vectors, scale):
+        v = np.concatenate([vectors[:, 0], vectors[:, 1], -vectors[mutual, 0],
+                            -vectors[mutual, 1]])
+        return sparse.csr_matrix((v * scale[r], (r, c)), shape=(2 * k, m))
+
+    return columns, local
+
+
 def _held(members, a, b, normals, curved, mass, gravity, tol):
     """The contact forces that hold the group ``members`` up, or ``None``.
 
@@ -247,22 +266,8 @@ def _held(members, a, b, normals, curved, mass, gravity, tol):
     from scipy import optimize, sparse
 
     k = len(members)
-    local = np.full(int(max(members.max(), a.max(), b.max())) + 1, -1, np.int64)
-    local[members] = np.arange(k)
     m = len(a)
-    cols = np.arange(m)
-    # Column c: +n on disk a's two rows, -n on disk b's (when b is a slow disk).
-    rows_a = 2 * local[a]
-    mutual = b >= 0
-    rows_b = 2 * local[b[mutual]]
-    r = np.concatenate([rows_a, rows_a + 1, rows_b, rows_b + 1])
-    c = np.concatenate([cols, cols, cols[mutual], cols[mutual]])
-
-    def columns(vectors, scale):
-        v = np.concatenate([vectors[:, 0], vectors[:, 1], -vectors[mutual, 0],
-                            -vectors[mutual, 1]])
-        return sparse.csr_matrix((v * scale[r], (r, c)), shape=(2 * k, m))
-
+    columns, _ = _columns(members, a, b)
     # The equations per unit mass: A f / m = -g for every member.
     matrix = columns(normals, 1.0 / np.repeat(mass[members], 2))
     rhs = -np.tile(gravity, k)

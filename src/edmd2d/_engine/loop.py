@@ -389,11 +389,22 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     counts[C_COLLISIONS] += 1
                     n_coll += 1
                     if rest is not None:
-                        for k in range(2 if redo1 >= 0 else 1):
-                            resting.settle(i if k == 0 else j, t, S, E, tcand, stamp, qt, hv,
-                                           qhead, qs, qf, invm, gi, gf, head, nxt, wa, wb,
-                                           wstart, wwall, wsx, wsy, acc, counts, heated,
-                                           gravity, rest)
+                        # Both disks of a pair are examined, and the first again if only
+                        # the second came to rest (it may be the support the first
+                        # lacked): what comes to rest does not depend on which of the
+                        # two disks' predictions fired.
+                        first = second = False
+                        for k in range(3 if redo1 >= 0 else 1):
+                            if k == 2 and (first or not second):
+                                break
+                            rested = resting.settle(j if k == 1 else i, t, S, E, tcand, stamp,
+                                                    qt, hv, qhead, qs, qf, invm, gi, gf, head,
+                                                    nxt, wa, wb, wstart, wwall, wsx, wsy, acc,
+                                                    counts, heated, gravity, rest)
+                            if k == 0:
+                                first = rested
+                            elif k == 1:
+                                second = rested
             elif kind == SEGMENT or kind == BOX:
                 # (stalls(i, i, ...): a wall has no streak of its own; passing i again,
                 # not a literal -1, spares a second compiled copy.)

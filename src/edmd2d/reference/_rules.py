@@ -141,8 +141,11 @@ class CollisionRules(RestingRules):
             self.collisions += 1
             if self.rest is not None:
                 self._part(i, j, detail, *before)
-                self._settle(i)
-                self._settle(j)
+                # (Disk i again if only j came to rest, which may be the support it
+                # lacked: the outcome does not depend on the order of i and j.)
+                first = self._settle(i)
+                if self._settle(j) and not first:
+                    self._settle(i)
             return
         if math.isinf(self.m[i]):
             raise RuntimeError(f"immovable disk {i} reaches a wall")

@@ -848,7 +848,7 @@ class Resting(Family):
         """How far apart two contacts of a disk may lie and still count as one instant
         (wedged between two static bodies, or pushed into a floor), besides a few units
         of rounding of the clock: ``1e-6`` of ``soft / |g|``, the time a disk
-        leaving at the soft speed takes to stop rising.  Contact times at one instant
+        leaving a floor at the soft speed takes to stop rising.  Contact times at one instant
         differ by rounding, measured up to 3e-12 where the approach is slow (g = 1,
         unit diameters, clock ~ 5, where this is 4.5e-9): far below any bounce."""
         return 1e-6 * self.soft * 2.0 * self.height / (self.speed * self.speed)

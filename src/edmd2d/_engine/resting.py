@@ -270,7 +270,7 @@ def meet(i, j, t, aux, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, 
 def collide_static(i, j, t, aux, S, invm, acc, gf, contact, gravity, rest):
     """Flying disk ``i`` bounces off resting disk ``j`` as off a fixed circle (``j``
     keeps still: the impulse uses ``w_j = 0``), with the pair's coefficient of
-    restitution, and leaves it at the soft speed at least (:func:`lift`); or it
+    restitution, and leaves it at the parting speed at least (:func:`lift`); or it
     stops, if it is wedged (see below).  The virial counts it as any contact.
     Returns whether it was wedged."""
     sx, sy = unpack_shift(aux)
@@ -287,7 +287,7 @@ def collide_static(i, j, t, aux, S, invm, acc, gf, contact, gravity, rest):
             # touches static bodies on two sides.  Bouncing between them would take
             # unboundedly many collisions in no time: it stops (its kinetic energy
             # dissipated), to come to rest there if they hold it (settle), or else to
-            # leave this body at the soft speed (lift).
+            # leave this body at the parting speed (lift).
             acc[A_DISSIPATED] += 0.5 * (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]) / wi
             k = 0.0
             S[i, VX] = 0.0
@@ -307,24 +307,40 @@ def collide_static(i, j, t, aux, S, invm, acc, gf, contact, gravity, rest):
 
 
 @njit
+def parting_speed(pressing, gravity, rest):
+    """The speed at which :func:`lift` and :func:`part` make bodies leave each other
+    that an acceleration ``pressing`` (along their normal) presses together:
+    ``rest.soft pressing / |g|``.  Leaving at it, they meet again after ``2 rest.soft
+    / |g|`` whatever the slope of their contact.  (A fixed speed would throw a disk
+    off a contact that gravity barely presses, nearly level, far and fast: the disk
+    at the end of a row lying on a bed would be thrown along the row, into the
+    disks beyond, which push it back at once.)"""
+    return rest.soft * pressing / math.sqrt(gravity.gx * gravity.gx
+                                            + gravity.gy * gravity.gy)
+
+
+@njit
 def lift(i, nx, ny, S, invm, acc, gravity, rest):
     """After disk ``i`` met a static body with normal ``n`` (towards the disk, not
-    normalised) that gravity presses it into: make it leave at the soft speed at
-    least.  A disk that meets a static body with no normal speed (sliding along it,
-    or starting from rest on it) would otherwise meet it again at once, for ever;
-    leaving at the soft speed, it bounces along the body elastically, at most
-    ``|g| / (2 rest.soft)`` times per unit time, until it comes to rest or leaves.
-    The kinetic energy added is taken from the dissipated tally, so the energy books
-    hold."""
-    if gravity.gx * nx + gravity.gy * ny >= 0.0:
+    normalised) that gravity presses it into: make it leave at the soft speed, scaled
+    by the share of gravity that presses it (:func:`parting_speed`), at least.  A disk
+    that meets a static body with no normal speed (sliding along it, or starting from
+    rest on it) would otherwise meet it again at once, for ever; leaving at that speed,
+    it returns after ``2 rest.soft / |g|`` whatever the slope, so it bounces along the
+    body elastically at most ``|g| / (2 rest.soft)`` times per unit time, until it comes
+    to rest or leaves.  The kinetic energy added is taken from the dissipated tally, so
+    the energy books hold."""
+    pressed = gravity.gx * nx + gravity.gy * ny
+    if pressed >= 0.0:
         return
-    nn = nx * nx + ny * ny
-    w = (S[i, VX] * nx + S[i, VY] * ny) / math.sqrt(nn)
-    if w >= rest.soft:
+    ln = math.sqrt(nx * nx + ny * ny)
+    w = (S[i, VX] * nx + S[i, VY] * ny) / ln
+    target = parting_speed(-pressed / ln, gravity, rest)
+    if w >= target:
         return
     vx0 = S[i, VX]
     vy0 = S[i, VY]
-    q = (rest.soft - w) / math.sqrt(nn)
+    q = (target - w) / ln
     S[i, VX] += q * nx
     S[i, VY] += q * ny
     acc[A_DISSIPATED] -= 0.5 * (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]
@@ -362,7 +378,7 @@ def part(i, j, aux, held_i, held_j, S, invm, acc, gf, gravity, rest):
     """After flying disks ``i`` and ``j`` (through the image shift ``aux``) collided:
     if gravity presses them together (one of them slid on a box wall before the
     collision, ``held_i`` and ``held_j`` its bits, so their accelerations differ) and
-    they part slower than ``rest.soft``, make them part at that speed, by an impulse
+    they part slower than :func:`parting_speed`, make them part at it, by an impulse
     along their normal (momentum conserved; the kinetic energy added taken from the
     dissipated tally, as in :func:`lift`).  The walls are those before the collision:
     a collision that pushes a sliding disk into its wall releases it (it bounces off
@@ -378,15 +394,17 @@ def part(i, j, aux, held_i, held_j, S, invm, acc, gf, gravity, rest):
     ny = S[i, Y] - (S[j, Y] + sy * gf[1])
     gxi, gyi = _sliding_acceleration(held_i, gravity)
     gxj, gyj = _sliding_acceleration(held_j, gravity)
-    if (gxi - gxj) * nx + (gyi - gyj) * ny >= 0.0:
+    pressed = (gxi - gxj) * nx + (gyi - gyj) * ny
+    if pressed >= 0.0:
         return
     ln = math.sqrt(nx * nx + ny * ny)
     w = ((S[i, VX] - S[j, VX]) * nx + (S[i, VY] - S[j, VY]) * ny) / ln
-    if w >= rest.soft:
+    target = parting_speed(-pressed / ln, gravity, rest)
+    if w >= target:
         return
     before = (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]) / wi + (
         S[j, VX] * S[j, VX] + S[j, VY] * S[j, VY]) / wj
-    jn = (rest.soft - w) / ((wi + wj) * ln)  # (the impulse over |n|)
+    jn = (target - w) / ((wi + wj) * ln)  # (the impulse over |n|)
     S[i, VX] += jn * wi * nx
     S[i, VY] += jn * wi * ny
     S[j, VX] -= jn * wj * nx

@@ -16,17 +16,19 @@ method over the plain per-disk lists:
   heated wall): a movable disk no faster than ``speed`` and held comes to rest: its
   velocity is kept aside (``frozen``) and set to zero, its kinetic energy counted as
   dissipated, and the supports that hold it are noted (those on the two sides of the
-  cone, or the flat wall alone, then the others, up to four);
+  cone, or the flat wall alone, then the others, up to four).  After a pair, the first
+  disk is examined again if only the second came to rest, so that the order of the
+  two does not matter;
 - a disk at rest does not move and feels no gravity: for the search it is a fixed
   circle, and two disks at rest never meet;
 - *impact* (:meth:`_meet`): a flying disk meeting one at rest with a normal speed up
   to ``wake``, or up to ``press`` where the resting disk's static contacts can take
   the push (the impact's direction against the cone of their normals), bounces off it
-  as off an immovable disk (:meth:`_bounce_static`), and leaves it at ``soft`` at least
-  (:meth:`_lift`).  If it met another static body at the same instant it is wedged and
-  stops instead (its kinetic energy dissipated), to come to rest there, or leave at
-  ``soft`` if not held.  A faster impact, or one by an immovable disk, wakes the
-  disk first (and the cascade below), and the two collide as any pair;
+  as off an immovable disk (:meth:`_bounce_static`), and leaves it at the parting
+  speed at least (:meth:`_lift`).  If it met another static body at the same instant it
+  is wedged and stops instead (its kinetic energy dissipated), to come to rest there,
+  or leave at the parting speed if not held.  A faster impact, or one by an immovable
+  disk, wakes the disk first (and the cascade below), and the two collide as any pair;
 - *wake* (:meth:`_wake`): a woken disk resumes the velocity it came to rest with (the
   kinetic energy leaving the dissipated tally again), and every disk at rest that
   counted it among its supports is examined again: if the others no longer hold it,
@@ -35,10 +37,12 @@ method over the plain per-disk lists:
 - *box walls*: after a bounce on a box wall that gravity presses the disk into, with
   a normal speed below ``speed`` left, the disk slides along the wall (its normal
   velocity, dissipated, removed), unless it collided at that same instant before and
-  bounces faster than a thousandth of ``soft``.  After a wall segment the disk leaves
-  at ``soft`` at least, if gravity presses it into the segment;
+  bounces faster than a thousandth of ``soft``.  After a wall segment or a disk at
+  rest that gravity presses it into, the disk leaves at ``soft`` times the share of
+  gravity that presses it (``-g.n / |g|``) at least;
 - *parting*: two flying disks that gravity presses together (one slid on a box wall
-  before they collided) part at ``soft`` at least, by an impulse along their normal;
+  before they collided) part at ``soft`` times the share of gravity that presses them
+  at least, by an impulse along their normal;
 - *groups* (:meth:`_rest_groups`): at every multiple of ``every`` (after the events at
   that time), the slow flying disks that hold one another up come to rest together.
   Which groups hold is a static question, a linear program over the contact forces,
@@ -310,7 +314,7 @@ class RestingRules:
         self.events.extend((self.time, "rest", i, -1) for i in self._rested)
         self._rested.clear()
 
-    # -- contacts with disks at rest, and the soft speed
+    # -- contacts with disks at rest, and the parting speed
     def _meet(self, i, j, shift):
         """Flying disk ``i`` meets disk ``j``: whether ``j`` is at rest and stays so
         (see the module notes); a faster impact wakes it first."""
@@ -358,17 +362,17 @@ class RestingRules:
 
     def _lift(self, i, n):
         """After disk ``i`` met a static body with unit normal ``n`` (towards the disk)
-        that gravity presses it into: it leaves at ``soft`` at least."""
+        that gravity presses it into: it leaves at ``soft`` times the share of
+        gravity that presses it, at least."""
         pressed = _dot(self.gravity, n)
-        if pressed != 0.0:  # (exactly 0 for a wall along gravity: no close call)
-            self._close("pressed", pressed, 0.0, math.hypot(*self.gravity))
         if pressed >= 0.0:
             return
         w = _dot(self.v[i], n)
-        if w >= self.rest.soft:
+        target = self.rest.soft * -pressed / math.hypot(*self.gravity)
+        if w >= target:
             return
         before = _dot(self.v[i], self.v[i])
-        q = self.rest.soft - w
+        q = target - w
         self.v[i] = [self.v[i][0] + q * n[0], self.v[i][1] + q * n[1]]
         self.dissipated -= 0.5 * self.m[i] * (_dot(self.v[i], self.v[i]) - before)
 
@@ -380,22 +384,27 @@ class RestingRules:
     def _part(self, i, j, shift, ai, aj):
         """After flying disks ``i`` and ``j`` collided, with accelerations ``ai`` and
         ``aj`` before it: if gravity presses them together (one of them slid on a box
-        wall), they part at ``soft`` at least."""
+        wall), they part at ``soft`` times the share of gravity that presses them, at
+        least."""
         if math.isinf(self.m[i]) or math.isinf(self.m[j]):
             return
         d = (self.p[i][0] - self.p[j][0] - shift[0], self.p[i][1] - self.p[j][1] - shift[1])
-        pressed = _dot((ai[0] - aj[0], ai[1] - aj[1]), d)
-        if ai != aj:  # (equal accelerations, both in free fall: exactly 0)
-            self._close("pressed", pressed, 0.0, math.hypot(*self.gravity) * math.hypot(*d))
-        if pressed >= 0.0:
-            return
         norm = math.hypot(*d)
         n = (d[0] / norm, d[1] / norm)
+        pressed = _dot((ai[0] - aj[0], ai[1] - aj[1]), n)
+        if ai != aj:  # (equal accelerations, both in free fall: exactly 0)
+            # (Parting releases both from their walls: a decision, however small the
+            # impulse.)
+            self._close("pressed", pressed, 0.0, math.hypot(*self.gravity))
+        if pressed >= 0.0:
+            return
         w = _dot((self.v[i][0] - self.v[j][0], self.v[i][1] - self.v[j][1]), n)
-        if w >= self.rest.soft:
+        target = self.rest.soft * -pressed / math.hypot(*self.gravity)
+        self._close("parting", w, target, self.rest.soft)
+        if w >= target:
             return
         before = self.m[i] * _dot(self.v[i], self.v[i]) + self.m[j] * _dot(self.v[j], self.v[j])
-        impulse = (self.rest.soft - w) * self.m[i] * self.m[j] / (self.m[i] + self.m[j])
+        impulse = (target - w) * self.m[i] * self.m[j] / (self.m[i] + self.m[j])
         self.v[i] = [self.v[i][0] + impulse / self.m[i] * n[0],
                      self.v[i][1] + impulse / self.m[i] * n[1]]
         self.v[j] = [self.v[j][0] - impulse / self.m[j] * n[0],

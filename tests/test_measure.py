@@ -95,6 +95,27 @@ def test_two_disks_head_on_periodic_exact():
     assert sim.time == pytest.approx(40.5)
 
 
+@pytest.mark.parametrize("mirror", [1.0, -1.0])
+def test_two_disks_on_a_diagonal_give_the_shear_pressure_exactly(mirror):
+    # Two disks (radius 0.5, mass 1) 1.5 apart along the diagonal n = (mirror, 1) /
+    # sqrt(2), closing at speed sqrt(2), in a periodic 10 x 10 box: they meet once in
+    # the window (at t = 0.5 / sqrt(2)), with the impulse J = mu (1 + e) sqrt(2) =
+    # sqrt(2) at the distance 1, so sum J |r| n_x n_y = mirror sqrt(2) / 2; their
+    # velocities only swap, so sum m v_x v_y = mirror / 2 throughout, and with both
+    # momenta conserved kT_xy = (mirror / 2) / (N - 1).  P_xy A = N kT_xy + sum J |r|
+    # n_x n_y / t: it changes sign with the mirror image, P_xx does not.
+    d = 1.5 / np.sqrt(2.0)
+    sim = ed.Simulation([[5.0, 5.0], [5.0 + mirror * d, 5.0 + d]],
+                        [[0.5 * mirror, 0.5], [-0.5 * mirror, -0.5]], radii=0.5,
+                        box=ed.Box(10.0, 10.0))
+    m = sim.measure(duration=4.0, blocks=2)
+    assert m.collisions == 1
+    expected = (2.0 * 0.5 + np.sqrt(2.0) / 2.0 / 4.0) / 100.0
+    assert m.pressure_xy == pytest.approx(mirror * expected, rel=1e-12)
+    assert m.pressure_xx == pytest.approx(expected, rel=1e-12)
+    assert m.pressure_tensor[1, 0] == m.pressure_tensor[0, 1] == m.pressure_xy
+
+
 def test_one_disk_between_walls_exact():
     # A disk (radius 0.5, mass 1, speed 2 along x) in a closed 10 x 6 box bounces between
     # x = 0.5 and x = 9.5: impulse 2 m v = 4 on each x-wall every 2 * 9 / 2 = 9 time units.
@@ -467,6 +488,14 @@ def test_pressure_tensor_diagonal():
     assert 0.5 * (m.pressure_xx + m.pressure_yy) == pytest.approx(m.pressure, rel=2e-3)
     # The two axes are equivalent: their difference is noise of a few error bars.
     assert abs(m.pressure_xx - m.pressure_yy) < 6 * m.pressure_error * np.sqrt(2) + 0.01
+    # At rest, a fluid carries no shear stress: P_xy is noise, within 5 of its own
+    # block error bars (20 blocks: a false alarm about once in 10^4 runs), and that
+    # error bar is of the size of the diagonal's.
+    m = sim.measure(duration=30.0, blocks=20)
+    err = m.pressure_tensor_error[0, 1]
+    assert 0.2 * m.pressure_tensor_error[0, 0] < err < 5.0 * m.pressure_tensor_error[0, 0]
+    assert abs(m.pressure_xy) < 5.0 * err
+    assert np.trace(m.pressure_tensor) / 2 == pytest.approx(m.pressure, rel=2e-3)
 
 
 def test_channel_normal_pressure_equals_wall_pressure():

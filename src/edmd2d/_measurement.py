@@ -5,7 +5,7 @@ with its values, their error bars and a printed summary."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -66,6 +66,16 @@ class Measurement:
         ``a`` components alone (``(sum m v_a^2 - P_a^2 / M) / (N - c_a)``, ``c_a = 1`` if
         that momentum component is conserved).  Their mean is ``pressure`` (up to the
         split of the kinetic part); they differ in anisotropic systems such as a channel.
+    pressure_xy : float
+        The off-diagonal of the pressure tensor, ``P_xy A = N kT_xy + sum J |r_ij| n_x
+        n_y / t``, ``kT_xy = (sum m v_x v_y - P_x P_y / M) / (N - c)`` (``c = 1`` if
+        both momentum components are conserved): 0 in equilibrium, ``-eta`` times the
+        shear rate in a sheared fluid.
+    pressure_tensor : ndarray, shape (2, 2)
+        ``[[pressure_xx, pressure_xy], [pressure_xy, pressure_yy]]`` (a property).
+    pressure_tensor_error : ndarray, shape (2, 2)
+        Standard errors of its components over the blocks (each block's kinetic part
+        the mean of its two boundaries).
     compressibility_factor, compressibility_factor_error : float
         ``Z = P A / (N kT) = 1 + sum J |r_ij| / (2 t N kT)``.
     collision_rate, collision_rate_error : float
@@ -141,6 +151,15 @@ class Measurement:
     segment_pressure: float
     segment_pressure_error: float
     temperature_error: float = math.nan
+    pressure_xy: float = math.nan
+    pressure_tensor_error: np.ndarray = field(
+        default_factory=lambda: _frozen(np.full((2, 2), math.nan)))
+
+    @property
+    def pressure_tensor(self) -> np.ndarray:
+        """``[[pressure_xx, pressure_xy], [pressure_xy, pressure_yy]]``."""
+        return _frozen(np.array([[self.pressure_xx, self.pressure_xy],
+                                 [self.pressure_xy, self.pressure_yy]]))
 
     def summary(self) -> str:
         """A few lines with the main values and their error bars.
@@ -174,6 +193,10 @@ class Measurement:
             lines.append(f"area                   {self.area:.6g} ({where})")
         lines += [
             f"pressure               {pm(self.pressure, self.pressure_error)}",
+            f"  tensor xx, yy, xy    "
+            f"{pm(self.pressure_xx, self.pressure_tensor_error[0, 0])}, "
+            f"{pm(self.pressure_yy, self.pressure_tensor_error[1, 1])}, "
+            f"{pm(self.pressure_xy, self.pressure_tensor_error[0, 1])}",
             f"compressibility Z      "
             f"{pm(self.compressibility_factor, self.compressibility_factor_error)}",
             f"collision rate / disk  {pm(self.collision_rate, self.collision_rate_error)}",

@@ -452,9 +452,10 @@ class EngineState:
         return _flight.velocities_at(self.time, self.S, self.gravity_bundle())
 
     def accumulators(self) -> dict:
-        """Raw sums since creation: the collision virial ``sum J |r_ij|``, its diagonal
-        components ``sum J |r_ij| n_x^2`` and ``n_y^2`` (``n`` the contact normal), and the
-        impulses on the walls (``J`` the impulse magnitude of a contact):
+        """Raw sums since creation: the collision virial ``sum J |r_ij|``, its tensor's
+        components ``sum J |r_ij| n_x^2``, ``n_y^2`` and ``n_x n_y`` (``n`` the contact
+        normal), and the impulses on the walls (``J`` the impulse magnitude of a
+        contact):
 
         - ``"box_impulse"``, shape (4,): ``sum J`` on each box wall (x=0, x=width, y=0,
           y=height);
@@ -479,6 +480,7 @@ class EngineState:
             "virial": float(a[_layout.A_VIRIAL]),
             "virial_xx": float(a[_layout.A_VIRIAL_XX]),
             "virial_yy": float(a[_layout.A_VIRIAL_YY]),
+            "virial_xy": float(a[_layout.A_VIRIAL_XY]),
             "box_impulse": a[_layout.A_BOX:_layout.A_BOX + 4].copy(),
             "segment_impulse": float(a[_layout.A_SEGMENTS]),
             "segment_impulses": w[:, _layout.W_FX:_layout.W_FY + 1].copy(),

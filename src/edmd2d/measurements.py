@@ -469,6 +469,7 @@ def _edge(sim, movable: np.ndarray) -> dict:
         "acc": sim._accumulators(),
         "temperature": kinetic_temperature(sim),
         "axis_temperatures": _axis_temperatures(sim, movable),
+        "cross_temperature": _cross_temperature(sim, movable),
         "speed": _mean_speed(sim, movable),
         "collisions": counts.collisions,
         "wall_collisions": counts.wall_collisions,
@@ -501,6 +502,15 @@ def _from_edges(edges: list, tau, duration: float, *, n: int, n_all: int, dof: i
     virial = np.diff([a["virial"] for a in edges_acc])
     virial_axes = np.array([edges_acc[-1][k] - acc0[k] for k in ("virial_xx", "virial_yy")])
     kt_axes = np.mean(np.array(axis_temps), axis=0)
+    # The pressure tensor by blocks: kinetic part from each block's two boundaries,
+    # collisional part from its collisions.  (A window kept from before the
+    # off-diagonal was summed has none: nan.)
+    virial_tensor = np.diff([[[a["virial_xx"], a.get("virial_xy", math.nan)],
+                              [a.get("virial_xy", math.nan), a["virial_yy"]]]
+                             for a in edges_acc], axis=0)
+    kt_tensor = np.array([[[x, xy], [xy, y]] for (x, y), xy in
+                          zip(axis_temps, (e.get("cross_temperature", math.nan)
+                                           for e in edges))])
     box_imp = np.diff(np.array([a["box_impulse"] for a in edges_acc]), axis=0)
     seg_imp = edges_acc[-1]["segment_impulse"] - acc0["segment_impulse"]
     seg_len = np.array([w.length for w in walls]).reshape(-1, 1)
@@ -523,6 +533,10 @@ def _from_edges(edges: list, tau, duration: float, *, n: int, n_all: int, dof: i
         pressure = (n * kt + float(virial.sum()) / (2.0 * duration)) / area
         z = pressure * area / (n * kt) if kt > 0 else math.nan
         p_axes = (n * kt_axes + virial_axes / duration) / area
+        p_tensor_block = (n * 0.5 * (kt_tensor[1:] + kt_tensor[:-1])
+                          + virial_tensor / tau3) / area
+        p_xy = (n * float(np.mean(kt_tensor[:, 0, 1]))
+                + float(virial_tensor[:, 0, 1].sum()) / duration) / area
         rate = 2.0 * float(n_coll.sum()) / (n_all * duration)
         rate_err = _stderr(rate_block)
         mft = 1.0 / rate if rate > 0 else math.inf
@@ -578,6 +592,8 @@ def _from_edges(edges: list, tau, duration: float, *, n: int, n_all: int, dof: i
         segment_pressure=seg_p,
         segment_pressure_error=seg_p_err,
         temperature_error=_stderr(kt_block),
+        pressure_xy=p_xy,
+        pressure_tensor_error=_frozen(_stderr(p_tensor_block)),
     )
 
 
@@ -594,6 +610,21 @@ def _axis_temperatures(sim, movable: np.ndarray) -> np.ndarray:
             drift = p * p / m.sum() if conserved[a] else 0.0
             out[a] = (float(dot(m, v[:, a] ** 2)) - drift) / dof
     return out
+
+
+def _cross_temperature(sim, movable: np.ndarray) -> float:
+    """``kT_xy``: the covariance of the two velocity components, ``(sum m v_x v_y -
+    P_x P_y / M) / (N - c)`` (the drift taken out, and ``c = 1``, where the dynamics
+    conserves both momentum components), the kinetic part of ``P_xy A / N``."""
+    _, conserved = degrees_of_freedom(sim)
+    m = sim.masses[movable]
+    v = sim.velocities[movable]
+    both = bool(conserved[0] and conserved[1])
+    dof = len(m) - int(both)
+    if dof <= 0:
+        return math.nan
+    drift = float(dot(m, v[:, 0])) * float(dot(m, v[:, 1])) / m.sum() if both else 0.0
+    return (float(dot(m, v[:, 0] * v[:, 1])) - drift) / dof
 
 
 def _mean_speed(sim, movable: np.ndarray) -> float:

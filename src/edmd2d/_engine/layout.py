@@ -204,8 +204,9 @@ N_COUNTS = 7
 # impulse delivered to each box wall (x=0, x=W, y=0, y=H) and to all wall segments, the
 # diagonal of the virial tensor, sum J |r_ij| n_x^2 and sum J |r_ij| n_y^2, the
 # kinetic energy lost in inelastic collisions, the kinetic energy each box wall gave
-# to the disks (heated walls: x=0, x=W, y=0, y=H), and the kinetic energy the
-# thermostat's redraws gave.
+# to the disks (heated walls: x=0, x=W, y=0, y=H), the kinetic energy the
+# thermostat's redraws gave, and the off-diagonal of the virial tensor, sum J |r_ij|
+# n_x n_y.
 A_VIRIAL = 0
 A_BOX = 1  # 1..4
 A_SEGMENTS = 5
@@ -215,7 +216,8 @@ A_DISSIPATED = 8
 A_HEAT_BOX = 9  # 9..12
 A_THERMOSTAT = 13
 A_GRAVITY = 14  # potential energy given by changes of gravity (Python side only)
-N_ACC = 15
+A_VIRIAL_XY = 15
+N_ACC = 16
 
 # Per-segment tallies (wacc[k, ...], one row per wall segment k, beside acc[A_SEGMENTS],
 # their total): the impulse vector the segment received, the sum of -J n over its

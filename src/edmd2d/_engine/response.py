@@ -52,6 +52,7 @@ from .layout import (
     A_THERMOSTAT,
     A_VIRIAL,
     A_VIRIAL_XX,
+    A_VIRIAL_XY,
     A_VIRIAL_YY,
     BOX,
     VX,
@@ -237,10 +238,11 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, contact, gravity, growth):
         S[i, VY] += k * wi * dy
         S[j, VX] -= k * wj * dx
         S[j, VY] -= k * wj * dy
-        # The virial J |d| (n_x^2, n_y^2), J = k |d|.
+        # The virial J |d| (n_x^2, n_y^2, n_x n_y), J = k |d|.
         acc[A_VIRIAL] += k * dd
         acc[A_VIRIAL_XX] += k * dx * dx
         acc[A_VIRIAL_YY] += k * dy * dy
+        acc[A_VIRIAL_XY] += k * dx * dy
     _note_collision(i, t, invm, contact)
     _note_collision(j, t, invm, contact)
     if gravity is not None:

@@ -66,6 +66,7 @@ from .layout import (
     A_DISSIPATED,
     A_VIRIAL,
     A_VIRIAL_XX,
+    A_VIRIAL_XY,
     A_VIRIAL_YY,
     C_RESTS,
     C_WAKES,
@@ -299,6 +300,7 @@ def collide_static(i, j, t, aux, S, invm, acc, gf, contact, gravity, rest):
         acc[A_VIRIAL] += k * dd
         acc[A_VIRIAL_XX] += k * dx * dx
         acc[A_VIRIAL_YY] += k * dy * dy
+        acc[A_VIRIAL_XY] += k * dx * dy
     if not wedged:
         lift(i, dx, dy, S, invm, acc, gravity, rest)
     _note_collision(i, t, invm, contact)

@@ -42,7 +42,14 @@ def acceleration(i, gravity):
         return gravity.gx, gravity.gy
     if rest & RESTING:
         return 0.0, 0.0
-    return (0.0 if rest & 3 else gravity.gx), (0.0 if rest & 12 else gravity.gy)
+    return sliding_acceleration(rest, gravity)
+
+
+@njit
+def sliding_acceleration(held, gravity):
+    """The acceleration of a flying disk that slides on the box walls ``held`` (bits
+    ``1 << side``): gravity less the components those walls hold."""
+    return (0.0 if held & 3 else gravity.gx), (0.0 if held & 12 else gravity.gy)
 
 
 @njit

@@ -60,7 +60,7 @@ import math
 
 from .._jit import njit
 from . import queue
-from .flight import drift, position_at
+from .flight import drift, position_at, sliding_acceleration
 from .grid import neighbour
 from .layout import (
     A_DISSIPATED,
@@ -369,13 +369,6 @@ def slide(i, side, t, before, S, invm, acc, contact, gravity, rest):
 
 
 @njit
-def _sliding_acceleration(held, gravity):
-    """The acceleration of a flying disk that slides on the box walls ``held`` (bits
-    ``1 << side``): gravity less the components those walls hold."""
-    return (0.0 if held & 3 else gravity.gx), (0.0 if held & 12 else gravity.gy)
-
-
-@njit
 def part(i, j, aux, held_i, held_j, S, invm, acc, gf, gravity, rest):
     """After flying disks ``i`` and ``j`` (through the image shift ``aux``) collided:
     if gravity presses them together (one of them slid on a box wall before the
@@ -394,8 +387,8 @@ def part(i, j, aux, held_i, held_j, S, invm, acc, gf, gravity, rest):
     sx, sy = unpack_shift(aux)
     nx = S[i, X] - (S[j, X] + sx * gf[0])
     ny = S[i, Y] - (S[j, Y] + sy * gf[1])
-    gxi, gyi = _sliding_acceleration(held_i, gravity)
-    gxj, gyj = _sliding_acceleration(held_j, gravity)
+    gxi, gyi = sliding_acceleration(held_i, gravity)
+    gxj, gyj = sliding_acceleration(held_j, gravity)
     pressed = (gxi - gxj) * nx + (gyi - gyj) * ny
     if pressed >= 0.0:
         return

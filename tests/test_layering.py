@@ -22,7 +22,8 @@ LAYERS = [
     # foundations: no simulation in sight
     {"_version", "_jit", "_validate", "_sums", "_atomic", "_api", "_jsonable", "_facade",
      "_measurement",
-     "progress", "_compile_notice", "theory", "geometry", "_engine", "_gaps", "_balance"},
+     "progress", "_compile_notice", "theory", "geometry", "_engine", "_gaps", "_balance",
+     "_impacts"},
     # what the simulation is built from, and what reads a simulation through its
     # public state only
     {"models", "physics", "_placement", "_operations", "reference", "_checks",

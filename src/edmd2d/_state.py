@@ -14,7 +14,7 @@ import time as _time
 
 import numpy as np
 
-from . import _balance, _checks
+from . import _balance, _checks, _impacts
 from . import models as _models
 from . import progress as _progress
 from ._checks import OVERLAP_TOL
@@ -47,6 +47,10 @@ _CHUNK_EVENTS = 1 << 18
 # per disk, and at least as many as this minimum.
 _WEDGED_EVENTS_PER_DISK = 64
 _WEDGED_EVENTS_MIN = 1 << 20
+# Impacts (``_impacts.py``) at one time after which a stall stops the run: each leaves
+# no contact of its group closing, so a group that stalls again at once is not ended
+# by them.
+_IMPACTS_AT_ONCE = 8
 # Events per engine call when a progress bar is shown (a few ms at 10^6 coll/s).
 _PROGRESS_EVENTS = 1 << 16
 # Systems at least this large are kept sorted in memory along a Z-order curve over the
@@ -660,6 +664,105 @@ class EngineState:
             self.drain()
         return len(rows)
 
+    def impact(self, seeds) -> bool:
+        """Resolve, at :attr:`time`, the contacts of the flying disks joined to the
+        internal rows ``seeds`` as one perfectly inelastic impact (``_impacts.py``):
+        their velocities change, the impulses count in the virial and the walls'
+        tallies, one collision per contact that takes an impulse, and the kinetic
+        energy removed is dissipated.  Then the groups of disks that hold one another
+        up come to rest (:meth:`rest_groups`).  Returns whether any velocity changed."""
+        vel = self.velocities()
+        support = _layout.support_view(self.S)
+        static = (support & _layout.RESTING != 0) | (
+            (self.invm == 0.0) & (vel == 0.0).all(axis=1))
+        flying = ~static & (self.invm > 0.0)
+        ends = [(np.full(2, np.nan), np.full(2, np.nan)) if self.wall_open[k] else (a, b)
+                for k, (a, b) in enumerate(zip(self.wa, self.wb))]
+        pos = self.positions()
+        found = _impacts.group(seeds, pos, self.S[:, _layout.R], flying, static,
+                               self.box, ends)
+        if found is None:
+            return False
+        members, a, b, side, segment, normal, distance = found
+        if len(a) == 0:
+            return False
+        after, impulse, lost = _impacts.resolve(members, vel, self.invm, a, b, normal)
+        loaded = impulse > 0.0
+        if not loaded.any():
+            return False
+        lost -= _impacts.lift(members, after, self.invm, a, b, side, normal, self.gravity,
+                              self.families["resting"].soft)
+        acc = self.acc
+        acc[_layout.A_DISSIPATED] += lost
+        disk = b != -1
+        j = impulse[disk] * distance[disk]
+        nx, ny = normal[disk, 0], normal[disk, 1]
+        acc[_layout.A_VIRIAL] += float(j.sum())
+        acc[_layout.A_VIRIAL_XX] += float((j * nx * nx).sum())
+        acc[_layout.A_VIRIAL_YY] += float((j * ny * ny).sum())
+        acc[_layout.A_VIRIAL_XY] += float((j * nx * ny).sum())
+        for c in np.flatnonzero((side >= 0) & loaded):
+            acc[_layout.A_BOX + side[c]] += impulse[c]
+        for c in np.flatnonzero((segment >= 0) & loaded):
+            k = int(segment[c])
+            acc[_layout.A_SEGMENTS] += impulse[c]
+            self.wacc[k, _layout.W_FX] -= impulse[c] * normal[c, 0]
+            self.wacc[k, _layout.W_FY] -= impulse[c] * normal[c, 1]
+            self.wacc[k, _layout.W_CONTACTS] += 1.0
+            start, end = self.wa[k], self.wb[k]
+            along = np.subtract(end, start)
+            offset = pos[a[c]] - start
+            u = float(offset @ along) / float(along @ along)
+            if not 0.0 < u < 1.0:
+                col = _layout.W_ENDS
+            else:
+                col = (_layout.W_LEFT if offset[0] * -along[1] + offset[1] * along[0] >= 0.0
+                       else _layout.W_RIGHT)
+            self.wacc[k, col] += impulse[c]
+        walls = (side >= 0) | (segment >= 0)
+        self.counts[_layout.C_COLLISIONS] += int((loaded & ~walls).sum())
+        self.counts[_layout.C_WALL] += int((loaded & walls).sum())
+        self.log_impact(a[loaded], b[loaded], side[loaded], segment[loaded],
+                        impulse[loaded])
+        model = self.model
+        if model is not None:
+            model.streak[members] = 0
+            model.t_last[members] = self.time
+        bundle = self.rest_bundle()
+        bundle.stack[:len(members)] = members
+        _resting.impact_group(self.time, len(members), np.ascontiguousarray(after),
+                              self.S, self.E, self.tcand, self.stamp, self.qt, self.hv,
+                              self.qhead, self.qs, self.qf, self.invm, self.gi, self.head,
+                              self.nxt, self.gravity_bundle(), bundle)
+        self.rest_groups()
+        return True
+
+    def log_impact(self, a, b, side, segment, impulse) -> None:
+        """Log the contacts of an impact at :attr:`time` as collisions (a pair, a disk
+        at rest), box-wall or segment contacts, each with its impulse."""
+        if self.log_capacity == 0 or len(a) == 0:
+            return
+        if self.log_n[0] >= self.log_capacity:
+            self.drain()
+        for c in range(len(a)):
+            if self.log_n[0] >= len(self.log_t):
+                self.drain()
+            k = int(self.log_n[0])
+            if side[c] >= 0:
+                kind, partner = _layout.BOX, int(side[c])
+            elif segment[c] >= 0:
+                kind, partner = _layout.SEGMENT, int(segment[c])
+            else:
+                row = int(b[c]) if b[c] >= 0 else -2 - int(b[c])
+                kind, partner = _layout.DISK, int(self.order[row])
+            self.log_t[k] = self.time
+            self.log_e[k, 0] = kind
+            self.log_e[k, 1] = self.order[a[c]]
+            self.log_e[k, 2] = partner
+            self.log_j[k] = impulse[c]
+            self.log_n[0] = k + 1
+        self.drain()
+
     def wake_all(self) -> None:
         """Wake every disk at rest (before its velocity, its position or the forces on
         it are set): each resumes the velocity it came to rest with (see
@@ -814,6 +917,7 @@ class EngineState:
         out = np.array([self.time])
         info = np.full(2, -1, np.int64)  # (the disks an engine error names)
         same = 0  # events in a row at the present time, over the calls so far
+        impacts, impact_time = 0, math.nan  # (the impacts at one time: see below)
         limit = self.wedged_limit()
         chunk = _CHUNK_EVENTS if bar is None else _PROGRESS_EVENTS
         clock = _time.perf_counter()
@@ -867,6 +971,16 @@ class EngineState:
             if status == _layout.LOG_FULL:
                 self.drain()
                 continue
+            if (status == _layout.ERR_STALLED and self.rest_supports is not None
+                    and impacts < _IMPACTS_AT_ONCE):
+                # Disks caught between static bodies: one inelastic impact of the
+                # group (``_impacts.py``).
+                i, j = int(info[0]), int(info[1])
+                pair = _layout.kind_of(int(self.E[i, _layout.KIND])) == _layout.DISK
+                if self.impact([i, j] if pair else [i]):
+                    impacts = impacts + 1 if self.time == impact_time else 1
+                    impact_time = self.time
+                    continue
             reached = status in (_layout.REACHED_TIME, _layout.NO_EVENTS)
             if reached and self.rest_check is not None and t_run == t_check:
                 # (An empty queue with no redraw to come: nothing moves until something

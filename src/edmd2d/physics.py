@@ -730,8 +730,8 @@ class Resting(Family):
     instant : float
         ``1e-6 soft / |g|``: two contacts of a disk this close in time (besides a few
         units of rounding of the clock) come at one instant, for the rules above (a
-        disk wedged between two static bodies stops; one pushed into a box wall by a
-        disk bounces off it rather than slide).
+        disk wedged between two static bodies loses the velocity that drives it into
+        them; one pushed into a box wall by a disk bounces off it rather than slide).
     every : float
         ``200 h / speed = 141 sqrt(h / |g|)`` (4.5 ``sqrt(d / |g|)`` at the default
         ``h``, ``d`` the smallest diameter): the interval of the search for groups that

@@ -358,9 +358,10 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                                              rest)
                         mark = log_n[0]
                     if rest is not None and still:
-                        if resting.collide_static(i, j, t, aux, S, invm, acc, gf, contact,
-                                                  gravity, rest):
-                            # (Stopped in a wedge: at rest there if held, else it leaves j.)
+                        if resting.collide_static(i, j, t, aux, S, E, invm, gi, gf, head,
+                                                  nxt, wa, wb, wstart, wwall, wsx, wsy, acc,
+                                                  contact, heated, gravity, rest):
+                            # (Wedged: at rest there if held, else it leaves j.)
                             if not resting.settle(i, t, S, E, tcand, stamp, qt, hv, qhead, qs,
                                                   qf, invm, gi, gf, head, nxt, wa, wb, wstart,
                                                   wwall, wsx, wsy, acc, counts, heated,

@@ -103,6 +103,10 @@ MAX_SUPPORTS = 4
 # Support codes of the walls (disk rows are >= 0; -1 is an empty slot).
 BOX_SUPPORT = -2  # box wall ``side``: -2 - side
 SEGMENT_SUPPORT = -6  # wall segment ``k``: -6 - k
+#: The largest gap, relative to the disk's diameter, of a static body that a wedged
+#: disk touches (:func:`wedge`): far above the rounding of a contact and far below any
+#: gap a disk crosses at one instant.
+WEDGE_TOUCH = 1e-9
 #: The bodies within the gap examined when a disk is put to rest (a disk touches at
 #: most six others of its size, and a few walls).
 CANDIDATES = 32
@@ -268,12 +272,14 @@ def meet(i, j, t, aux, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, 
 
 
 @njit
-def collide_static(i, j, t, aux, S, invm, acc, gf, contact, gravity, rest):
+def collide_static(i, j, t, aux, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx,
+                   wsy, acc, contact, heated, gravity, rest):
     """Flying disk ``i`` bounces off resting disk ``j`` as off a fixed circle (``j``
     keeps still: the impulse uses ``w_j = 0``), with the pair's coefficient of
-    restitution, and leaves it at the parting speed at least (:func:`lift`); or it
-    stops, if it is wedged (see below).  The virial counts it as any contact.
-    Returns whether it was wedged."""
+    restitution, and leaves it at the parting speed at least (:func:`lift`); or, if
+    it is wedged, it loses the velocity that drives it into the static bodies it
+    touches (:func:`wedge`).  The virial counts the bounce as any contact.  Returns
+    whether it was wedged."""
     sx, sy = unpack_shift(aux)
     dx = S[i, X] - (S[j, X] + sx * gf[0])
     dy = S[i, Y] - (S[j, Y] + sy * gf[1])
@@ -284,28 +290,77 @@ def collide_static(i, j, t, aux, S, invm, acc, gf, contact, gravity, rest):
     if s < 0.0:
         wi = invm[i]
         if wedged:
-            # Wedged: it met a static body before this one at the same instant, so it
-            # touches static bodies on two sides.  Bouncing between them would take
-            # unboundedly many collisions in no time: it stops (its kinetic energy
-            # dissipated), to come to rest there if they hold it (settle), or else to
-            # leave this body at the parting speed (lift).
-            acc[A_DISSIPATED] += 0.5 * (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]) / wi
-            k = 0.0
-            S[i, VX] = 0.0
-            S[i, VY] = 0.0
+            wedge(i, t, dx, dy, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx,
+                  wsy, acc, heated, gravity, rest)
         else:
             k = _pair_impulse(i, j, t, s, dd, wi, 0.0, acc, contact)
-        S[i, VX] += k * wi * dx
-        S[i, VY] += k * wi * dy
-        acc[A_VIRIAL] += k * dd
-        acc[A_VIRIAL_XX] += k * dx * dx
-        acc[A_VIRIAL_YY] += k * dy * dy
-        acc[A_VIRIAL_XY] += k * dx * dy
+            S[i, VX] += k * wi * dx
+            S[i, VY] += k * wi * dy
+            acc[A_VIRIAL] += k * dd
+            acc[A_VIRIAL_XX] += k * dx * dx
+            acc[A_VIRIAL_YY] += k * dy * dy
+            acc[A_VIRIAL_XY] += k * dx * dy
     if not wedged:
         lift(i, dx, dy, S, invm, acc, gravity, rest)
     _note_collision(i, t, invm, contact)
     _release(i, S, gravity.support)
     return wedged
+
+
+@njit
+def wedge(i, t, nx, ny, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy,
+          acc, heated, gravity, rest):
+    """Disk ``i`` meets a static body (normal ``n`` towards the disk, not normalised)
+    at the instant it met one before, so it touches static bodies on two sides:
+    bouncing between them would take unboundedly many collisions in no time.  Its
+    velocity becomes the one nearest to it that drives it into none of the static
+    bodies it touches (this one, and those within ``WEDGE_TOUCH`` of their contact
+    distance): a perfectly inelastic impact with all of them at once, which keeps
+    the velocity along them (a disk caught against a static body by a row that a
+    falling disk pushes still falls).  The kinetic energy removed is dissipated;
+    the impulse, at most a rounding's worth of an impact in the bed, is left out of
+    the virial.  The disk then comes to rest there if they hold it (settle), or
+    else leaves this body at the parting speed (lift)."""
+    m, _ = _statics(i, t, 1.0, 0.0, WEDGE_TOUCH * 2.0 * S[i, R], S, E, invm, gi, gf, head,
+                    nxt, wa, wb, wstart, wwall, wsx, wsy, heated, gravity, rest)
+    angles = rest.angles
+    vx = S[i, VX]
+    vy = S[i, VY]
+    ln = math.sqrt(nx * nx + ny * ny)
+    ux = nx / ln
+    uy = ny / ln
+    # The velocity nearest to v in the cone {u : u.n_k >= 0}: v itself, its projection
+    # on the line of one contact that it drives into, or 0 (in two dimensions one of
+    # these is the projection).
+    eps = 1e-12 * math.sqrt(vx * vx + vy * vy)
+    best_x = 0.0
+    best_y = 0.0
+    best = vx * vx + vy * vy
+    for k in range(-1, m):
+        if k < 0:
+            ax = ux
+            ay = uy
+        else:
+            ax = math.cos(angles[k])
+            ay = math.sin(angles[k])
+        vn = vx * ax + vy * ay
+        if vn >= 0.0 or vn * vn >= best:
+            continue
+        px = vx - vn * ax
+        py = vy - vn * ay
+        ok = px * ux + py * uy >= -eps
+        for q in range(m):
+            if not ok:
+                break
+            ok = px * math.cos(angles[q]) + py * math.sin(angles[q]) >= -eps
+        if ok:
+            best = vn * vn
+            best_x = px
+            best_y = py
+    acc[A_DISSIPATED] += 0.5 * (vx * vx + vy * vy - best_x * best_x - best_y * best_y) / (
+        invm[i])
+    S[i, VX] = best_x
+    S[i, VY] = best_y
 
 
 @njit
@@ -480,6 +535,34 @@ def rest_group(t, n, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head, 
 
 
 @njit
+def impact_group(t, n, vel, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head, nxt,
+                 gravity, rest):
+    """Give the ``n`` flying disks ``rest.stack[:n]`` the velocities ``vel`` at ``t``
+    (one inelastic impact found by the Python layer, ``_impacts.py``): each is moved to
+    ``t``, leaves the box walls it no longer slides on, and is predicted afresh, as is
+    every flying disk around it (a contact with it may now come sooner)."""
+    support = gravity.support
+    for k in range(n):
+        i = rest.stack[k]
+        drift(i, t, S, gravity)
+        S[i, VX] = vel[k, 0]
+        S[i, VY] = vel[k, 1]
+        _release(i, S, support)
+        stamp[i] += 1
+    cells = rest.cells
+    for k in range(n):
+        i = rest.stack[k]
+        mark_stale(i, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
+        for c in range(_near_cells(E[i, CELL], gi, cells)):
+            m = head[cells[c]]
+            while m >= 0:
+                if (support[m] & RESTING) == 0 and (
+                        invm[m] > 0.0 or S[m, VX] != 0.0 or S[m, VY] != 0.0):
+                    mark_stale(m, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
+                m = nxt[m]
+
+
+@njit
 def _put_to_rest(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head, nxt, acc,
                  counts, gravity, rest):
     """Put disk ``i`` (its state at ``t``) to rest, its supports already written, and
@@ -526,6 +609,54 @@ def _cone(i, t, upx, upy, write, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, 
     strictly inside the cone of their normals, or one of them is a flat wall whose
     normal is ``up``.  If so, and ``write``, its supports are written to
     ``rest.supports[i]``."""
+    n, flat_k = _statics(i, t, upx, upy, rest.gap, S, E, invm, gi, gf, head, nxt, wa, wb,
+                         wstart, wwall, wsx, wsy, heated, gravity, rest)
+    codes = rest.codes
+    angles = rest.angles
+    # The best supports on each side of "up" (angles from it, counterclockwise
+    # positive), and a flat wall under the disk.
+    neg = -math.inf
+    pos = math.inf
+    neg_k = -1
+    pos_k = -1
+    for k in range(n):
+        a = angles[k]
+        if a < 0.0 and a > neg:
+            neg = a
+            neg_k = k
+        elif a > 0.0 and a < pos:
+            pos = a
+            pos_k = k
+    held = flat_k >= 0 or (neg_k >= 0 and pos_k >= 0 and pos - neg < math.pi)
+    if not held or not write:
+        return held
+    # At rest: keep the supports that hold it first, then the others that fit.
+    sup = rest.supports
+    for s in range(MAX_SUPPORTS):
+        sup[i, s] = -1
+    if flat_k >= 0:
+        # A flat wall holds it alone: no other support leaving can move it.
+        sup[i, 0] = codes[flat_k]
+    else:
+        sup[i, 0] = codes[neg_k]
+        sup[i, 1] = codes[pos_k]
+        kept = 2
+        for k in range(n):
+            if kept >= MAX_SUPPORTS:
+                break
+            if k != neg_k and k != pos_k:
+                sup[i, kept] = codes[k]
+                kept += 1
+    return True
+
+
+@njit
+def _statics(i, t, upx, upy, tol, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall,
+             wsx, wsy, heated, gravity, rest):
+    """The static bodies within ``tol`` of disk ``i`` (at ``t``; not heated walls): their
+    codes in ``rest.codes`` and the angles of their normals (towards the disk) from the
+    unit vector ``up`` (counterclockwise positive) in ``rest.angles``.  Returns their
+    number and the last flat wall among them whose normal is ``up`` (-1: none)."""
     support = gravity.support
     codes = rest.codes
     angles = rest.angles
@@ -533,13 +664,6 @@ def _cone(i, t, upx, upy, write, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, 
     x = S[i, X]
     y = S[i, Y]
     r = S[i, R]
-    tol = rest.gap
-    # The best supports on each side of "up" (angles from it, counterclockwise
-    # positive), and a flat wall under the disk.
-    neg = -math.inf
-    pos = math.inf
-    neg_k = -1
-    pos_k = -1
     flat_k = -1
     # Box walls (normals into the box).
     for side in range(4):
@@ -623,32 +747,4 @@ def _cone(i, t, upx, upy, write, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, 
                         angles[n] = math.atan2(upx * dy - upy * dx, upx * dx + upy * dy)
                         n += 1
                 m = nxt[m]
-    for k in range(n):
-        a = angles[k]
-        if a < 0.0 and a > neg:
-            neg = a
-            neg_k = k
-        elif a > 0.0 and a < pos:
-            pos = a
-            pos_k = k
-    held = flat_k >= 0 or (neg_k >= 0 and pos_k >= 0 and pos - neg < math.pi)
-    if not held or not write:
-        return held
-    # At rest: keep the supports that hold it first, then the others that fit.
-    sup = rest.supports
-    for s in range(MAX_SUPPORTS):
-        sup[i, s] = -1
-    if flat_k >= 0:
-        # A flat wall holds it alone: no other support leaving can move it.
-        sup[i, 0] = codes[flat_k]
-    else:
-        sup[i, 0] = codes[neg_k]
-        sup[i, 1] = codes[pos_k]
-        kept = 2
-        for k in range(n):
-            if kept >= MAX_SUPPORTS:
-                break
-            if k != neg_k and k != pos_k:
-                sup[i, kept] = codes[k]
-                kept += 1
-    return True
+    return n, flat_k

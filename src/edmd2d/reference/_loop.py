@@ -16,6 +16,7 @@ import numpy as np
 
 from ..geometry import Box, Wall
 from . import _search
+from ._resting import IMPACTS_AT_ONCE
 from ._rules import CollisionRules
 from ._times import INF, _at, _dot
 
@@ -254,6 +255,7 @@ class ReferenceSimulation(CollisionRules):
         self.supports: list[list[int]] = [[] for _ in range(n)]
         self.t_static = [-INF] * n
         self.t_before = [-INF] * n
+        self.streak = [0] * n  # collisions in a row at one instant (where counted)
         self.close_calls: list[tuple[float, str]] = []
         self.rests = 0
         self.wakes = 0
@@ -426,6 +428,7 @@ class ReferenceSimulation(CollisionRules):
         target = INF if until is None else float(until)
         todo = INF if collisions is None else int(collisions)
         done = 0
+        impacts, impact_time = 0, math.nan  # (impacts at one instant)
         while done < todo:
             dt, kind, i, partner, detail = self.next_event()
             horizon = self._horizon()
@@ -457,6 +460,15 @@ class ReferenceSimulation(CollisionRules):
             if self.time + dt > target or dt == INF:
                 break
             assert kind is not None  # (an event: dt < inf)
+            disks = [i, partner] if kind == "disk" else [i]
+            if self._stalls(self.time + dt, disks):
+                # Caught between static bodies: one impact of the group, now.
+                impacts = impacts + 1 if self.time == impact_time else 1
+                impact_time = self.time
+                if impacts > IMPACTS_AT_ONCE or not self._impact(disks):
+                    raise RuntimeError(f"inelastic collapse at t={self.time + dt}: disks "
+                                       f"{disks} would collide again at the same time")
+                continue
             self._drift(dt)
             self._resolve(kind, i, partner, detail)
             self._wrap()

@@ -26,8 +26,10 @@ method over the plain per-disk lists:
   the push (the impact's direction against the cone of their normals), bounces off it
   as off an immovable disk (:meth:`_bounce_static`), and leaves it at the parting
   speed at least (:meth:`_lift`).  If it met another static body at the same instant it
-  is wedged and stops instead (its kinetic energy dissipated), to come to rest there,
-  or leave at the parting speed if not held.  A faster impact, or one by an immovable
+  is wedged (:meth:`_wedge`): it loses, instead, the part of its velocity that drives
+  it into the static bodies it touches (the velocity nearest to its own that drives it
+  into none, its loss dissipated), to come to rest there, or leave at the parting
+  speed if not held.  A faster impact, or one by an immovable
   disk, wakes the disk first (and the cascade below), and the two collide as any pair;
 - *wake* (:meth:`_wake`): a woken disk resumes the velocity it came to rest with (the
   kinetic energy leaving the dissipated tally again), and every disk at rest that
@@ -73,7 +75,9 @@ from typing import Any
 
 import numpy as np
 
-from .._balance import TOL, held_groups  # (the one piece borrowed: see the notes)
+from .._balance import TOL, held_groups  # (borrowed: see the notes)
+from .._impacts import group as impact_group
+from .._impacts import resolve as impact_resolve
 from ._times import _dot
 
 #: The supports noted per resting disk.
@@ -84,6 +88,12 @@ INSTANT = 8.0 * 2.0 ** -52
 #: A decision is a close call when its quantity lies within this relative distance of
 #: its threshold.
 CLOSE = 1e-6
+#: The static bodies a wedged disk touches: gaps up to this fraction of its diameter.
+WEDGE_TOUCH = 1e-9
+#: Collisions of one disk in a row at one instant that make a stall, as in the engine.
+STALL_COLLISIONS = 10_000
+#: Impacts at one instant after which a stall stops the run, as in the engine.
+IMPACTS_AT_ONCE = 8
 
 
 def box_support(side: int) -> int:
@@ -128,8 +138,14 @@ class RestingRules:
     t_static: list[float]
     t_last: list[float]
     t_before: list[float]
+    streak: list[int]
+    restitution: Any
+    wall_restitution: float
+    thermostat: Any
     rests: int
     wakes: int
+    collisions: int
+    wall_collisions: int
     _woken: list[int]
     _rested: list[int]
     events: list[tuple[float, str, int, int]]
@@ -159,14 +175,15 @@ class RestingRules:
         standing still."""
         return self.at_rest[k] or (math.isinf(self.m[k]) and self.v[k] == [0.0, 0.0])
 
-    def _contacts(self, i):
-        """The static bodies within ``gap`` of disk ``i``: ``(code, normal, flat)``,
-        the normal a unit vector towards the disk's centre, ``flat`` whether it is a
-        box wall or a segment's side; in the order box walls, segments, disks."""
+    def _contacts(self, i, gap=None):
+        """The static bodies within ``gap`` (default: the criteria's) of disk ``i``:
+        ``(code, normal, flat)``, the normal a unit vector towards the disk's centre,
+        ``flat`` whether it is a box wall or a segment's side; in the order box walls,
+        segments, disks."""
         found = []  # (code, normal, flat)
         x, y = self.p[i]
         r = self.r[i]
-        gap = self.rest.gap
+        gap = self.rest.gap if gap is None else gap
         for side in range(4):
             axis = side // 2
             if self.box.periodic[axis] or side in self.wall_kt:
@@ -338,7 +355,7 @@ class RestingRules:
     def _bounce_static(self, i, j, shift, restitution):
         """Flying disk ``i`` bounces off disk ``j`` at rest as off an immovable disk,
         with the pair's ``restitution`` (a function of the normal speed); returns
-        whether it was wedged (and stopped)."""
+        whether it was wedged."""
         d = (self.p[i][0] - self.p[j][0] - shift[0], self.p[i][1] - self.p[j][1] - shift[1])
         norm = math.hypot(*d)
         n = (d[0] / norm, d[1] / norm)
@@ -349,8 +366,7 @@ class RestingRules:
         self._close_instant(before)  # (wedged or not decides the lift, too)
         if vn < 0.0:
             if wedged:
-                self.dissipated += 0.5 * self.m[i] * _dot(self.v[i], self.v[i])
-                self.v[i] = [0.0, 0.0]
+                self._wedge(i, n)
             else:
                 e = restitution(vn)
                 self.v[i] = [self.v[i][0] - (1.0 + e) * vn * n[0],
@@ -359,6 +375,32 @@ class RestingRules:
         if not wedged:
             self._lift(i, n)
         return wedged
+
+    def _wedge(self, i, n):
+        """Disk ``i``, wedged (it met a static body, unit normal ``n``, at the instant
+        it met one before), loses the velocity that drives it into the static bodies
+        it touches (this one, and those within ``WEDGE_TOUCH`` of its diameter): its
+        velocity becomes the one nearest to it in the cone ``u . n_k >= 0``."""
+        v = self.v[i]
+        normals = [n] + [normal for _, normal, _ in
+                         self._contacts(i, WEDGE_TOUCH * 2.0 * self.r[i])]
+        size = math.hypot(*v)
+
+        def allowed(u):
+            return all(_dot(u, normal) >= -1e-12 * size for normal in normals)
+
+        # In two dimensions the nearest velocity in the cone is 0 or a projection of
+        # v on the line of one contact; take the nearest of those allowed.
+        options = [(size, (0.0, 0.0))]
+        for normal in normals:
+            vn = _dot(v, normal)
+            if vn < 0.0:
+                u = (v[0] - vn * normal[0], v[1] - vn * normal[1])
+                if allowed(u):
+                    options.append((-vn, u))
+        _, best = min(options, key=lambda option: option[0])
+        self.dissipated += 0.5 * self.m[i] * (_dot(v, v) - _dot(best, best))
+        self.v[i] = [best[0], best[1]]
 
     def _lift(self, i, n):
         """After disk ``i`` met a static body with unit normal ``n`` (towards the disk)
@@ -457,11 +499,78 @@ class RestingRules:
         return self.time - before <= INSTANT * abs(self.time) + self.rest.instant
 
     def _note(self, k):
-        """Movable disk ``k`` collided now: its clock of the TC model."""
+        """Movable disk ``k`` collided now: its clock of the TC model, and its streak of
+        collisions at one instant (within a few units of rounding of the clock)."""
         if math.isinf(self.m[k]):
             return
+        at_once = self.time - self.t_last[k] <= INSTANT * abs(self.time)
+        self.streak[k] = self.streak[k] + 1 if at_once else 0
         self.t_before[k] = self.t_last[k]
         self.t_last[k] = self.time
+
+    # -- disks caught between static bodies: one inelastic impact
+    def _stalls(self, when, disks):
+        """Whether the contact of ``disks`` at ``when`` would make a streak of
+        ``STALL_COLLISIONS`` collisions of one movable disk at one instant (where disks
+        come to rest and a model of contact counts streaks: restitution below 1, heated
+        walls or a thermostat)."""
+        if self.rest is None or not self._streaks():
+            return False
+        return any(not math.isinf(self.m[k])
+                   and when - self.t_last[k] <= INSTANT * abs(when)
+                   and self.streak[k] + 1 >= STALL_COLLISIONS for k in disks)
+
+    def _streaks(self):
+        table = (self.restitution if isinstance(self.restitution, list)
+                 else [[self.restitution]])
+        return (self.wall_restitution < 1.0 or any(e < 1.0 for row in table for e in row)
+                or bool(self.wall_kt) or self.thermostat is not None)
+
+    def _impact(self, seeds):
+        """The flying disks joined to ``seeds`` by contacts, and their contacts with
+        static bodies, take one perfectly inelastic impact together
+        (:mod:`edmd2d._impacts`): each contact that takes an impulse is an event; then
+        the groups that hold one another up come to rest.  Returns whether any
+        velocity changed."""
+        n = len(self.p)
+        static = np.array([self._static(k) for k in range(n)])
+        flying = ~static & np.array([not math.isinf(m) for m in self.m])
+        ends = [(np.array(w.start, float), np.array(w.end, float)) for w in self.walls]
+        found = impact_group(seeds, np.array(self.p), np.array(self.r), flying, static,
+                             self.box, ends)
+        if found is None or len(found[1]) == 0:
+            return False
+        members, a, b, side, segment, normal, _ = found
+        invm = np.array([1.0 / m for m in self.m])
+        after, impulse, lost = impact_resolve(members, np.array(self.v), invm, a, b,
+                                              normal)
+        if not (impulse > 0.0).any():
+            return False
+        self.dissipated += lost
+        for k, d in enumerate(members):
+            self.v[int(d)] = [float(after[k, 0]), float(after[k, 1])]
+        # Each leaves the static disks and segments that gravity presses it into at the
+        # parting speed, contact by contact (on a box wall it slides instead).
+        for c in range(len(a)):
+            if b[c] == -1 and segment[c] >= 0 or b[c] < -1:
+                self._lift(int(a[c]), (float(normal[c, 0]), float(normal[c, 1])))
+        for d in members:
+            self._release(int(d))
+            self._note(int(d))
+            self.streak[int(d)] = 0
+        for c in np.flatnonzero(impulse > 0.0):
+            if side[c] >= 0:
+                self.events.append((self.time, "box", int(a[c]), int(side[c])))
+                self.wall_collisions += 1
+            elif segment[c] >= 0:
+                self.events.append((self.time, "wall", int(a[c]), int(segment[c])))
+                self.wall_collisions += 1
+            else:
+                other = int(b[c]) if b[c] >= 0 else -2 - int(b[c])
+                self.events.append((self.time, "disk", int(a[c]), other))
+                self.collisions += 1
+        self._rest_groups()
+        return True
 
 
 __all__ = ["RestingRules"]

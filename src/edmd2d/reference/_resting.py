@@ -558,7 +558,7 @@ class RestingRules:
             self._release(int(d))
             self._note(int(d))
             self.streak[int(d)] = 0
-        for c in np.flatnonzero(impulse > 0.0):
+        for c in np.flatnonzero(impulse > 0.0).tolist():
             if side[c] >= 0:
                 self.events.append((self.time, "box", int(a[c]), int(side[c])))
                 self.wall_collisions += 1

@@ -199,3 +199,61 @@ def test_a_row_clamped_between_pegs_stops_with_one_impact_and_comes_to_rest():
     with pytest.raises(RuntimeError, match="inelastic collapse"):
         ed.Simulation(pos, vel, 0.5, masses=mass, box=box, resting=False, **kw).advance(
             until=10.0)
+
+
+# ---------------------------------------------------------------- a wedged disk
+S3 = np.sqrt(3.0) / 2.0
+
+
+def groove(v):
+    """A disk in the groove of two pegs below it, at +-30 degrees from the vertical,
+    touching both, with velocity ``v``, in both engines (gravity, disks at rest)."""
+    pos = [[4.5, 5.0], [5.5, 5.0], [5.0, 5.0 + S3]]
+    vel = [[0.0, 0.0], [0.0, 0.0], list(v)]
+    mass = [np.inf, np.inf, 1.0]
+    box = Box(10.0, 10.0, periodic=False)
+    kw = dict(restitution=0.9, wall_restitution=0.9, gravity=(0.0, -1.0))
+    sim = ed.Simulation(pos, vel, 0.5, masses=mass, box=box, **kw)
+    state = sim._state
+    ref = ReferenceSimulation(pos, vel, 0.5, mass, box, resting=state.families["resting"],
+                              tc=float(state.model.tc), **kw)
+    return sim, ref
+
+
+def wedge_engine(sim, normal):
+    """Apply the engine's wedge rule to the disk (user index 2) at t = 0, as if it had
+    just met a static body with ``normal``; return its velocity and the energy lost."""
+    from edmd2d._engine import resting
+
+    state = sim._state
+    i = int(np.argsort(state.order)[2])
+    before = sim.dissipated_energy()
+    heated = state.model_families().heated
+    resting.wedge(i, 0.0, normal[0], normal[1], state.S, state.E, state.invm, state.gi,
+                  state.gf, state.head, state.nxt, state.wa, state.wb, state.wstart,
+                  state.wwall, state.wsx, state.wsy, state.acc, heated,
+                  state.gravity_bundle(), state.rest_bundle())
+    return sim.velocities[2], sim.dissipated_energy() - before
+
+
+@pytest.mark.parametrize("v, expected", [
+    # Into both pegs, more into the right one: it keeps sliding up along the right
+    # one, v - (v.n2) n2 with n2 = (-1/2, sqrt(3)/2) its normal.
+    ((1.0, -1.0), (1.0 - (0.5 + S3) / 2.0, -1.0 + (0.5 + S3) * S3)),
+    # Straight down into both: nothing is left.
+    ((0.0, -1.0), (0.0, 0.0)),
+    # Into the left peg only (its normal (1/2, sqrt(3)/2)): its tangent part stays.
+    ((-1.0, 0.0), (-1.0 + 0.25, S3 / 2.0)),
+])
+def test_a_wedged_disk_keeps_the_velocity_that_drives_it_into_no_static_body(v, expected):
+    left = np.array([0.5, S3])
+    sim, ref = groove(v)
+    got, lost = wedge_engine(sim, left)
+    np.testing.assert_allclose(got, expected, atol=1e-14)
+    assert lost == pytest.approx(0.5 * (np.dot(v, v) - np.dot(expected, expected)),
+                                 abs=1e-14)
+    ref._wedge(2, (0.5, S3))
+    np.testing.assert_allclose(ref.v[2], expected, atol=1e-14)
+    # The velocity left drives it into neither peg.
+    for n in (left, np.array([-0.5, S3])):
+        assert np.dot(got, n) >= -1e-14

@@ -257,3 +257,32 @@ def test_a_wedged_disk_keeps_the_velocity_that_drives_it_into_no_static_body(v, 
     # The velocity left drives it into neither peg.
     for n in (left, np.array([-0.5, S3])):
         assert np.dot(got, n) >= -1e-14
+
+
+def test_an_impact_on_a_segment_counts_in_its_tallies_and_the_virial():
+    # Disk 1 falls at 1 onto disk 0, which lies on a level segment (its left side,
+    # going from start to end): both stop, the segment takes the push (impulse 1,
+    # vector (0, -1)) and the pair's contact the same; the virial gains J |r| = 1.
+    wall = ed.Wall((1.0, 2.0), (9.0, 2.0))
+    pos = [[5.0, 2.5], [5.0, 3.5]]
+    sim = ed.Simulation(pos, [[0.0, 0.0], [0.0, -1.0]], 0.5, box=Box(10.0, 10.0,
+                        periodic=False), walls=[wall], restitution=0.9,
+                        wall_restitution=0.9, gravity=(0.0, -1.0))
+    state = sim._state
+    before = state.accumulators()
+    walls0, coll0 = sim.counts.wall_collisions, sim.counts.collisions
+    assert state.impact([int(np.argsort(state.order)[1])])
+    after = state.accumulators()
+    assert after["segment_impulse"] - before["segment_impulse"] == pytest.approx(1.0)
+    np.testing.assert_allclose(after["segment_impulses"] - before["segment_impulses"],
+                               [[0.0, -1.0]], atol=1e-14)
+    np.testing.assert_allclose(
+        after["segment_side_impulses"] - before["segment_side_impulses"], [[1.0, 0.0]],
+        atol=1e-14)
+    assert after["virial"] - before["virial"] == pytest.approx(1.0)
+    assert after["virial_yy"] - before["virial_yy"] == pytest.approx(1.0)
+    assert (sim.counts.wall_collisions - walls0, sim.counts.collisions - coll0) == (1, 1)
+    # Disk 0 then leaves the segment at the parting speed (gravity presses it fully).
+    soft = state.families["resting"].soft
+    np.testing.assert_allclose(sim.velocities, [[0.0, soft], [0.0, 0.0]], atol=1e-15)
+    assert sim.dissipated_energy() == pytest.approx(0.5 - 0.5 * soft ** 2)

@@ -709,14 +709,15 @@ class EngineState:
             self.wacc[k, _layout.W_FX] -= impulse[c] * normal[c, 0]
             self.wacc[k, _layout.W_FY] -= impulse[c] * normal[c, 1]
             self.wacc[k, _layout.W_CONTACTS] += 1.0
-            start, end = self.wa[k], self.wb[k]
-            along = np.subtract(end, start)
-            offset = pos[a[c]] - start
-            u = float(offset @ along) / float(along @ along)
-            if not 0.0 < u < 1.0:
+            # (The side from the normal itself, which the periodic images leave alone:
+            # along the segment at an end point, across it on a side.)
+            along = np.subtract(self.wb[k], self.wa[k])
+            along /= np.hypot(*along)
+            n = normal[c]
+            if abs(float(n @ along)) > 1e-9:
                 col = _layout.W_ENDS
             else:
-                col = (_layout.W_LEFT if offset[0] * -along[1] + offset[1] * along[0] >= 0.0
+                col = (_layout.W_LEFT if n[1] * along[0] - n[0] * along[1] >= 0.0
                        else _layout.W_RIGHT)
             self.wacc[k, col] += impulse[c]
         walls = (side >= 0) | (segment >= 0)

@@ -10,6 +10,17 @@ from edmd2d import Box, _impacts
 from edmd2d.reference import ReferenceSimulation
 
 BOX = Box(20.0, 20.0, periodic=False)
+MODEL = dict(restitution=0.9, wall_restitution=0.9, gravity=(0.0, -1.0))
+
+
+def both_engines(pos, vel, mass, box):
+    """The engine and the reference on one system of unit disks under gravity, with
+    the bed model and the engine's criteria of rest."""
+    sim = ed.Simulation(pos, vel, 0.5, masses=mass, box=box, **MODEL)
+    state = sim._state
+    ref = ReferenceSimulation(pos, vel, 0.5, mass, box, resting=state.families["resting"],
+                              tc=float(state.model.tc), **MODEL)
+    return sim, ref
 
 
 def impact(pos, vel, static=None, mass=None, seeds=(0,), box=BOX, ends=()):
@@ -127,13 +138,8 @@ def test_an_impact_changes_an_engine_run_as_it_changes_the_reference():
     c, s = np.cos(np.pi / 6.0), np.sin(np.pi / 6.0)
     pos = [[5.0, 5.0], [5.0 + c, 5.0 + s], [7.2, 5.3]]
     vel = [[0.0, 0.0], [-0.3, -0.1], [-0.2, -0.1]]
-    mass = [np.inf, 1.0, 2.0]
-    box = Box(12.0, 12.0, periodic=False)
-    kw = dict(restitution=0.9, wall_restitution=0.9, gravity=(0.0, -1.0))
-    sim = ed.Simulation(pos, vel, 0.5, masses=mass, box=box, **kw)
+    sim, ref = both_engines(pos, vel, [np.inf, 1.0, 2.0], Box(12.0, 12.0, periodic=False))
     state = sim._state
-    ref = ReferenceSimulation(pos, vel, 0.5, mass, box, resting=state.families["resting"],
-                              tc=float(state.model.tc), **kw)
     events = []
     sim.stream_events(events.append)
     assert state.impact([int(np.argsort(state.order)[1])])  # (the engine's row of disk 1)
@@ -178,8 +184,7 @@ def test_a_row_clamped_between_pegs_stops_with_one_impact_and_comes_to_rest():
     # With it the row stops at once, its kinetic energy dissipated, and comes to rest:
     # the reference does the same.
     pos, vel, mass, box = clamped_row()
-    kw = dict(restitution=0.9, wall_restitution=0.9, gravity=(0.0, -1.0))
-    sim = ed.Simulation(pos, vel, 0.5, masses=mass, box=box, **kw)
+    sim, ref = both_engines(pos, vel, mass, box)
     k0 = sim.kinetic_energy()
     sim.advance(until=10.0)
     assert sim.time == 10.0
@@ -187,9 +192,6 @@ def test_a_row_clamped_between_pegs_stops_with_one_impact_and_comes_to_rest():
     assert sim.counts.collisions > 10_000  # (one streak of collisions at one instant)
     assert sim.dissipated_energy() == pytest.approx(k0, rel=1e-12)
     np.testing.assert_array_equal(sim.positions, pos)  # (at t = 0 already)
-    state = sim._state
-    ref = ReferenceSimulation(pos, vel, 0.5, mass, box, resting=state.families["resting"],
-                              tc=float(state.model.tc), **kw)
     ref.advance(until=10.0)
     assert all(ref.at_rest[1:-1])
     assert ref.dissipated == pytest.approx(k0, rel=1e-12)
@@ -197,8 +199,8 @@ def test_a_row_clamped_between_pegs_stops_with_one_impact_and_comes_to_rest():
     # (Their events differ: every contact comes at t = 0, in an order each engine
     # breaks its own way.)
     with pytest.raises(RuntimeError, match="inelastic collapse"):
-        ed.Simulation(pos, vel, 0.5, masses=mass, box=box, resting=False, **kw).advance(
-            until=10.0)
+        ed.Simulation(pos, vel, 0.5, masses=mass, box=box, resting=False,
+                      **MODEL).advance(until=10.0)
 
 
 # ---------------------------------------------------------------- a wedged disk
@@ -210,14 +212,7 @@ def groove(v):
     touching both, with velocity ``v``, in both engines (gravity, disks at rest)."""
     pos = [[4.5, 5.0], [5.5, 5.0], [5.0, 5.0 + S3]]
     vel = [[0.0, 0.0], [0.0, 0.0], list(v)]
-    mass = [np.inf, np.inf, 1.0]
-    box = Box(10.0, 10.0, periodic=False)
-    kw = dict(restitution=0.9, wall_restitution=0.9, gravity=(0.0, -1.0))
-    sim = ed.Simulation(pos, vel, 0.5, masses=mass, box=box, **kw)
-    state = sim._state
-    ref = ReferenceSimulation(pos, vel, 0.5, mass, box, resting=state.families["resting"],
-                              tc=float(state.model.tc), **kw)
-    return sim, ref
+    return both_engines(pos, vel, [np.inf, np.inf, 1.0], Box(10.0, 10.0, periodic=False))
 
 
 def wedge_engine(sim, normal):
@@ -265,9 +260,8 @@ def test_an_impact_on_a_segment_counts_in_its_tallies_and_the_virial():
     # vector (0, -1)) and the pair's contact the same; the virial gains J |r| = 1.
     wall = ed.Wall((1.0, 2.0), (9.0, 2.0))
     pos = [[5.0, 2.5], [5.0, 3.5]]
-    sim = ed.Simulation(pos, [[0.0, 0.0], [0.0, -1.0]], 0.5, box=Box(10.0, 10.0,
-                        periodic=False), walls=[wall], restitution=0.9,
-                        wall_restitution=0.9, gravity=(0.0, -1.0))
+    sim = ed.Simulation(pos, [[0.0, 0.0], [0.0, -1.0]], 0.5, walls=[wall],
+                        box=Box(10.0, 10.0, periodic=False), **MODEL)
     state = sim._state
     before = state.accumulators()
     walls0, coll0 = sim.counts.wall_collisions, sim.counts.collisions

@@ -32,8 +32,6 @@ disks standing still, box walls, wall segments that are not open) hold it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from ._gaps import _candidates
@@ -48,36 +46,19 @@ TOUCH = 1e-9
 MAX_MEMBERS = 400
 
 
-@dataclass(frozen=True)
-class Impact:
-    """The outcome of one impact.
+def group(seeds, pos, rad, flying, static, box: Box, ends, cold_sides):
+    """The flying disks joined to ``seeds`` by contacts, and every contact of theirs
+    with each other and with static bodies: disks (``static``), the box walls
+    ``cold_sides`` allows and the wall segments ``ends`` (a segment left out has
+    non-finite ends: open, or heated, which holds nothing).
 
-    ``members`` are the flying disks of the group and ``velocities`` theirs after it.
-    Each contact ``c`` joins disk ``a[c]`` to ``b[c]``: another member (``>= 0``), a
-    static disk (``-2 - row``), a box wall (``side`` in ``box_side[c]``, ``b = -1``) or
-    a segment (``segment[c]``, ``b = -1``); ``normal[c]`` is the unit normal from the
-    body to ``a[c]``, ``distance[c]`` the distance between their centres (disks) and
-    ``impulse[c] >= 0`` the impulse along it.
-    """
-
-    members: np.ndarray
-    velocities: np.ndarray
-    a: np.ndarray
-    b: np.ndarray
-    box_side: np.ndarray
-    segment: np.ndarray
-    normal: np.ndarray
-    distance: np.ndarray
-    impulse: np.ndarray
-    dissipated: float
-
-
-def group(seeds, pos, rad, flying, static, box: Box, ends):
-    """The flying disks joined to ``seeds`` by contacts, and every contact of theirs.
-
-    Returns ``(members, a, b, box_side, segment, normal, distance)`` as in
-    :class:`Impact` (contacts with flying disks outside the group, beyond
-    ``MAX_MEMBERS``, are left out: they collide as usual)."""
+    Returns ``(members, a, b, box_side, segment, normal, distance)``: the members; for
+    each contact ``c`` the member ``a[c]``, its body ``b[c]`` (another member ``>= 0``,
+    a static disk ``-2 - row``, or ``-1`` for a box wall ``box_side[c]`` or a segment
+    ``segment[c]``, the others ``-1``), the unit normal from the body to ``a[c]`` and
+    the distance between the centres (for a wall, the radius).  Contacts with flying
+    disks outside the group (beyond ``MAX_MEMBERS``) are left out: they collide as
+    usual."""
     from scipy import sparse
     from scipy.sparse import csgraph
 
@@ -109,7 +90,7 @@ def group(seeds, pos, rad, flying, static, box: Box, ends):
     b = np.where(inside[other], other, -2 - other)
     # Box walls and segments.
     bd, side = cand.box[:, 0], cand.box[:, 1]
-    bk = (cand.box_gaps <= TOUCH * cand.box_scale) & inside[bd]
+    bk = (cand.box_gaps <= TOUCH * cand.box_scale) & inside[bd] & cold_sides[side]
     sd, seg = cand.segs[:, 0], cand.segs[:, 1]
     sk = (cand.seg_gaps <= TOUCH * cand.seg_scale) & inside[sd]
     svec = cand.seg_vec[sk]

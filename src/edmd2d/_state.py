@@ -25,6 +25,7 @@ from ._engine import layout as _layout
 from ._engine import loop as _loop
 from ._engine import overlap as _overlap
 from ._engine import queue as _queue
+from ._engine import response as _response
 from ._engine import resting as _resting
 from ._sums import dot
 from ._validate import about, as_generator, indices_where
@@ -47,10 +48,14 @@ _CHUNK_EVENTS = 1 << 18
 # per disk, and at least as many as this minimum.
 _WEDGED_EVENTS_PER_DISK = 64
 _WEDGED_EVENTS_MIN = 1 << 20
-# Impacts (``_impacts.py``) at one time after which a stall stops the run: each leaves
-# no contact of its group closing, so a group that stalls again at once is not ended
-# by them.
+# Impacts (``_impacts.py``) at one instant after which a stall stops the run.
 _IMPACTS_AT_ONCE = 8
+
+
+def _resting_instant(t: float) -> float:
+    """Stalls this close to ``t`` come at one instant, for the count of impacts: a few
+    units of rounding of the clock, as for the streaks of collisions."""
+    return _response.INSTANT * abs(t)
 # Events per engine call when a progress bar is shown (a few ms at 10^6 coll/s).
 _PROGRESS_EVENTS = 1 << 16
 # Systems at least this large are kept sorted in memory along a Z-order curve over the
@@ -664,34 +669,47 @@ class EngineState:
             self.drain()
         return len(rows)
 
-    def impact(self, seeds) -> bool:
+    def impact(self, seeds, stop: bool = False) -> bool:
         """Resolve, at :attr:`time`, the contacts of the flying disks joined to the
         internal rows ``seeds`` as one perfectly inelastic impact (``_impacts.py``):
         their velocities change, the impulses count in the virial and the walls'
         tallies, one collision per contact that takes an impulse, and the kinetic
-        energy removed is dissipated.  Then the groups of disks that hold one another
+        energy removed is dissipated.  With ``stop`` (the group stalled again at that
+        instant) they stop instead.  Then the groups of disks that hold one another
         up come to rest (:meth:`rest_groups`).  Returns whether any velocity changed."""
         vel = self.velocities()
         support = _layout.support_view(self.S)
         static = (support & _layout.RESTING != 0) | (
             (self.invm == 0.0) & (vel == 0.0).all(axis=1))
         flying = ~static & (self.invm > 0.0)
-        ends = [(np.full(2, np.nan), np.full(2, np.nan)) if self.wall_open[k] else (a, b)
+        families = self.model_families()
+        cold = np.ones(4 + len(self.wa), bool)
+        if families.heated is not None:
+            cold = families.heated.kt <= 0.0
+        cold[4:] &= ~self.wall_open  # (an open segment holds nothing)
+        ends = [(a, b) if cold[4 + k] else (np.full(2, np.nan), np.full(2, np.nan))
                 for k, (a, b) in enumerate(zip(self.wa, self.wb))]
         pos = self.positions()
         found = _impacts.group(seeds, pos, self.S[:, _layout.R], flying, static,
-                               self.box, ends)
+                               self.box, ends, cold[:4])
         if found is None:
             return False
         members, a, b, side, segment, normal, distance = found
         if len(a) == 0:
             return False
         after, impulse, lost = _impacts.resolve(members, vel, self.invm, a, b, normal)
+        if stop:
+            # (Its impulses are not counted: the static bodies took what the members
+            # lost, as from a wedged disk.)
+            after[:] = 0.0
+            lost = 0.5 * float(np.sum((vel[members] ** 2).sum(axis=1) / self.invm[members]))
+            impulse = np.zeros_like(impulse)
         loaded = impulse > 0.0
-        if not loaded.any():
-            return False
-        lost -= _impacts.lift(members, after, self.invm, a, b, side, normal, self.gravity,
+        added = _impacts.lift(members, after, self.invm, a, b, side, normal, self.gravity,
                               self.families["resting"].soft)
+        if not loaded.any() and added == 0.0 and not stop:
+            return False
+        lost -= added
         acc = self.acc
         acc[_layout.A_DISSIPATED] += lost
         disk = b != -1
@@ -972,15 +990,18 @@ class EngineState:
             if status == _layout.LOG_FULL:
                 self.drain()
                 continue
-            if (status == _layout.ERR_STALLED and self.rest_supports is not None
-                    and impacts < _IMPACTS_AT_ONCE):
+            if status == _layout.ERR_STALLED and self.rest_supports is not None:
                 # Disks caught between static bodies: one inelastic impact of the
-                # group (``_impacts.py``).
+                # group (``_impacts.py``); a group that stalls again at that instant
+                # stops.
+                if not self.time - impact_time <= _resting_instant(self.time):
+                    impacts = 0
+                impact_time = self.time
                 i, j = int(info[0]), int(info[1])
                 pair = _layout.kind_of(int(self.E[i, _layout.KIND])) == _layout.DISK
-                if self.impact([i, j] if pair else [i]):
-                    impacts = impacts + 1 if self.time == impact_time else 1
-                    impact_time = self.time
+                if impacts < _IMPACTS_AT_ONCE and self.impact([i, j] if pair else [i],
+                                                              stop=impacts > 0):
+                    impacts += 1
                     continue
             reached = status in (_layout.REACHED_TIME, _layout.NO_EVENTS)
             if reached and self.rest_check is not None and t_run == t_check:

@@ -312,15 +312,23 @@ def wedge(i, t, nx, ny, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall, ws
           acc, heated, gravity, rest):
     """Disk ``i`` meets a static body (normal ``n`` towards the disk, not normalised)
     at the instant it met one before, so it touches static bodies on two sides:
-    bouncing between them would take unboundedly many collisions in no time.  Its
-    velocity becomes the one nearest to it that drives it into none of the static
-    bodies it touches (this one, and those within ``WEDGE_TOUCH`` of their contact
-    distance): a perfectly inelastic impact with all of them at once, which keeps
-    the velocity along them (a disk caught against a static body by a row that a
-    falling disk pushes still falls).  The kinetic energy removed is dissipated;
-    the impulse, at most a rounding's worth of an impact in the bed, is left out of
-    the virial.  The disk then comes to rest there if they hold it (settle), or
-    else leaves this body at the parting speed (lift)."""
+    bouncing between them would take unboundedly many collisions in no time.  If the
+    static bodies within ``rest.gap`` hold it (:func:`held`, the criterion of rest)
+    it stops, to come to rest there (settle).  Otherwise its velocity becomes the one
+    nearest to it that drives it into none of the static bodies it touches (this
+    one, and those within ``WEDGE_TOUCH`` of their contact distance): a perfectly
+    inelastic impact with all of them at once, which keeps the velocity along them
+    (a disk caught against a static body by a row that a falling disk pushes still
+    falls), and it leaves this body at the parting speed (lift).  The kinetic energy
+    removed is dissipated; the impulse is left out of the virial and the walls'
+    tallies (it may be shared by two bodies)."""
+    g = math.hypot(gravity.gx, gravity.gy)
+    if _cone(i, t, -gravity.gx / g, -gravity.gy / g, False, S, E, invm, gi, gf, head, nxt,
+             wa, wb, wstart, wwall, wsx, wsy, heated, gravity, rest):
+        acc[A_DISSIPATED] += 0.5 * (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]) / invm[i]
+        S[i, VX] = 0.0
+        S[i, VY] = 0.0
+        return
     m, _ = _statics(i, t, 1.0, 0.0, WEDGE_TOUCH * 2.0 * S[i, R], S, E, invm, gi, gf, head,
                     nxt, wa, wb, wstart, wwall, wsx, wsy, heated, gravity, rest)
     angles = rest.angles

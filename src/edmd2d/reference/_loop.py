@@ -16,7 +16,7 @@ import numpy as np
 
 from ..geometry import Box, Wall
 from . import _search
-from ._resting import IMPACTS_AT_ONCE
+from ._resting import IMPACTS_AT_ONCE, INSTANT
 from ._rules import CollisionRules
 from ._times import INF, _at, _dot
 
@@ -462,12 +462,15 @@ class ReferenceSimulation(CollisionRules):
             assert kind is not None  # (an event: dt < inf)
             disks = [i, partner] if kind == "disk" else [i]
             if self._stalls(self.time + dt, disks):
-                # Caught between static bodies: one impact of the group, now.
-                impacts = impacts + 1 if self.time == impact_time else 1
+                # Caught between static bodies: one impact of the group, now (they stop
+                # if they stalled again at this instant).
+                if not self.time - impact_time <= INSTANT * abs(self.time):
+                    impacts = 0
                 impact_time = self.time
-                if impacts > IMPACTS_AT_ONCE or not self._impact(disks):
+                if impacts >= IMPACTS_AT_ONCE or not self._impact(disks, impacts > 0):
                     raise RuntimeError(f"inelastic collapse at t={self.time + dt}: disks "
                                        f"{disks} would collide again at the same time")
+                impacts += 1
                 continue
             self._drift(dt)
             self._resolve(kind, i, partner, detail)

@@ -26,10 +26,10 @@ method over the plain per-disk lists:
   the push (the impact's direction against the cone of their normals), bounces off it
   as off an immovable disk (:meth:`_bounce_static`), and leaves it at the parting
   speed at least (:meth:`_lift`).  If it met another static body at the same instant it
-  is wedged (:meth:`_wedge`): it loses, instead, the part of its velocity that drives
-  it into the static bodies it touches (the velocity nearest to its own that drives it
-  into none, its loss dissipated), to come to rest there, or leave at the parting
-  speed if not held.  A faster impact, or one by an immovable
+  is wedged (:meth:`_wedge`): it stops if held, to come to rest there; if not, it loses
+  the part of its velocity that drives it into the static bodies it touches (the
+  velocity nearest to its own that drives it into none, its loss dissipated) and
+  leaves at the parting speed.  A faster impact, or one by an immovable
   disk, wakes the disk first (and the cascade below), and the two collide as any pair;
 - *wake* (:meth:`_wake`): a woken disk resumes the velocity it came to rest with (the
   kinetic energy leaving the dissipated tally again), and every disk at rest that
@@ -378,10 +378,16 @@ class RestingRules:
 
     def _wedge(self, i, n):
         """Disk ``i``, wedged (it met a static body, unit normal ``n``, at the instant
-        it met one before), loses the velocity that drives it into the static bodies
-        it touches (this one, and those within ``WEDGE_TOUCH`` of its diameter): its
-        velocity becomes the one nearest to it in the cone ``u . n_k >= 0``."""
+        it met one before), stops if the static bodies within ``gap`` hold it (then it
+        comes to rest there); otherwise it loses the velocity that drives it into the
+        static bodies it touches (this one, and those within ``WEDGE_TOUCH`` of its
+        diameter): its velocity becomes the one nearest to it in the cone
+        ``u . n_k >= 0``."""
         v = self.v[i]
+        if self._cone(i, self._up(), False):
+            self.dissipated += 0.5 * self.m[i] * _dot(v, v)
+            self.v[i] = [0.0, 0.0]
+            return
         normals = [n] + [normal for _, normal, _ in
                          self._contacts(i, WEDGE_TOUCH * 2.0 * self.r[i])]
         size = math.hypot(*v)
@@ -526,26 +532,34 @@ class RestingRules:
         return (self.wall_restitution < 1.0 or any(e < 1.0 for row in table for e in row)
                 or bool(self.wall_kt) or self.thermostat is not None)
 
-    def _impact(self, seeds):
+    def _impact(self, seeds, stop=False):
         """The flying disks joined to ``seeds`` by contacts, and their contacts with
-        static bodies, take one perfectly inelastic impact together
-        (:mod:`edmd2d._impacts`): each contact that takes an impulse is an event; then
-        the groups that hold one another up come to rest.  Returns whether any
-        velocity changed."""
+        static bodies (not heated walls), take one perfectly inelastic impact together
+        (:mod:`edmd2d._impacts`), or stop if ``stop`` (they stalled again at this
+        instant); each contact that takes an impulse is an event; then the groups
+        that hold one another up come to rest.  Returns whether any velocity
+        changed."""
         n = len(self.p)
         static = np.array([self._static(k) for k in range(n)])
         flying = ~static & np.array([not math.isinf(m) for m in self.m])
-        ends = [(np.array(w.start, float), np.array(w.end, float)) for w in self.walls]
+        nowhere = (np.full(2, np.nan), np.full(2, np.nan))
+        ends = [nowhere if 4 + k in self.wall_kt
+                else (np.array(w.start, float), np.array(w.end, float))
+                for k, w in enumerate(self.walls)]
+        cold = np.array([side not in self.wall_kt for side in range(4)])
         found = impact_group(seeds, np.array(self.p), np.array(self.r), flying, static,
-                             self.box, ends)
+                             self.box, ends, cold)
         if found is None or len(found[1]) == 0:
             return False
         members, a, b, side, segment, normal, _ = found
         invm = np.array([1.0 / m for m in self.m])
+        before = [list(self.v[int(d)]) for d in members]
         after, impulse, lost = impact_resolve(members, np.array(self.v), invm, a, b,
                                               normal)
-        if not (impulse > 0.0).any():
-            return False
+        if stop:
+            after[:] = 0.0
+            lost = sum(0.5 * self.m[int(d)] * _dot(v, v) for d, v in zip(members, before))
+            impulse[:] = 0.0
         self.dissipated += lost
         for k, d in enumerate(members):
             self.v[int(d)] = [float(after[k, 0]), float(after[k, 1])]
@@ -554,6 +568,9 @@ class RestingRules:
         for c in range(len(a)):
             if b[c] == -1 and segment[c] >= 0 or b[c] < -1:
                 self._lift(int(a[c]), (float(normal[c, 0]), float(normal[c, 1])))
+        if not stop and not (impulse > 0.0).any() and all(
+                self.v[int(d)] == v for d, v in zip(members, before)):
+            return False
         for d in members:
             self._release(int(d))
             self._note(int(d))

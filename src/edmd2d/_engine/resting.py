@@ -277,9 +277,9 @@ def collide_static(i, j, t, aux, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, 
     """Flying disk ``i`` bounces off resting disk ``j`` as off a fixed circle (``j``
     keeps still: the impulse uses ``w_j = 0``), with the pair's coefficient of
     restitution, and leaves it at the parting speed at least (:func:`lift`); or, if
-    it is wedged, it loses the velocity that drives it into the static bodies it
-    touches (:func:`wedge`).  The virial counts the bounce as any contact.  Returns
-    whether it was wedged."""
+    it is wedged, it stops where the static bodies hold it and otherwise loses the
+    velocity that drives it into them (:func:`wedge`).  The virial counts the bounce
+    as any contact.  Returns whether it was wedged."""
     sx, sy = unpack_shift(aux)
     dx = S[i, X] - (S[j, X] + sx * gf[0])
     dy = S[i, Y] - (S[j, Y] + sy * gf[1])

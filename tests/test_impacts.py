@@ -308,3 +308,23 @@ def test_a_row_in_grooves_settles_after_its_impacts(velocities, reference):
         ref.advance(until=5.0)
         assert all(ref.at_rest[k] for k in np.flatnonzero(np.isfinite(mass)))
         assert ref.total_energy() + ref.dissipated == pytest.approx(e0, abs=1e-13)
+
+
+def test_a_member_in_a_groove_leaves_it_straight_up_at_the_parting_speed():
+    # A disk falling straight into the groove of two pegs below it: the impact stops
+    # it, and it leaves both pegs, which gravity presses it into with the share cos 30
+    # each, at soft cos 30 along each normal: straight up at soft, the nearest
+    # velocity that does (lifting off one peg after the other would throw it
+    # sideways, at (0.25, 1.30) soft).  Held there and slow, it then comes to rest
+    # with that velocity, all its energy dissipated.
+    sim, ref = pegs((0.0, -1.0), (240.0, 300.0))
+    state = sim._state
+    soft = state.families["resting"].soft
+    row = int(np.argsort(state.order)[2])
+    assert state.impact([row])
+    assert ref._impact([2])
+    assert sim.resting[2] and ref.at_rest[2]
+    np.testing.assert_allclose(state.rest_frozen[row], [0.0, soft], atol=1e-15)
+    np.testing.assert_allclose(ref.frozen[2], [0.0, soft], atol=1e-15)
+    assert sim.dissipated_energy() == pytest.approx(0.5, rel=1e-12)
+    assert ref.dissipated == pytest.approx(0.5, rel=1e-12)

@@ -140,24 +140,50 @@ def lift(members, after, invm, a, b, side, normal, gravity, soft):
     """Make the members leave the static disks and wall segments that gravity presses
     them into at the parting speed at least (``soft`` times the share of gravity that
     presses them, as a disk that meets a static body does: ``_engine/resting.lift``),
-    contact by contact in order; returns the kinetic energy added.  Without it a
-    member left touching such a body with no normal speed would meet it again at
-    once, for ever.  (On a box wall it slides instead, as there.)"""
+    while driving into none of their static contacts: each member's velocity becomes
+    the one nearest to it that does both (:func:`nearest`); returns the kinetic
+    energy added.  Without it a member left touching such a body with no normal
+    speed would meet it again at once, for ever.  (A box wall only bounds it: on a
+    box wall it slides, as there.)"""
     g = float(np.hypot(*gravity))
-    col = {int(d): k for k, d in enumerate(members)}
     added = 0.0
-    for c in range(len(a)):
-        if b[c] >= 0 or side[c] >= 0:
-            continue  # (another member, or a box wall)
-        n = normal[c]
-        pressed = float(gravity @ n)
-        if pressed >= 0.0:
+    static = b < 0
+    for k, d in enumerate(members):
+        mine = np.flatnonzero(static & (a == d))
+        if len(mine) == 0:
             continue
-        k = col[int(a[c])]
-        w = float(after[k] @ n)
-        target = soft * -pressed / g
-        if w < target:
-            before = float(after[k] @ after[k])
-            after[k] = after[k] + (target - w) * n
-            added += 0.5 * (float(after[k] @ after[k]) - before) / invm[a[c]]
+        n = normal[mine]
+        pressing = -(n @ gravity)
+        pressed = (pressing > 0.0) & (side[mine] < 0)
+        if not pressed.any():
+            continue
+        target = np.where(pressed, soft * pressing / g, 0.0)
+        u = nearest(after[k], n, target)
+        if u is not None:
+            added += 0.5 * (float(u @ u) - float(after[k] @ after[k])) / invm[d]
+            after[k] = u
     return added
+
+
+def nearest(v, n, target):
+    """The vector nearest to ``v`` with ``n_c . u >= target_c`` for every row ``c`` (unit
+    normals), or ``None`` if there is none.  In two dimensions it is ``v`` itself, its
+    projection on the line of one constraint, or the crossing of two lines: the
+    nearest of those that satisfy all constraints."""
+    slack = 1e-12 * (float(np.hypot(*v)) + float(np.max(np.abs(target))))
+
+    def allowed(u):
+        return bool(np.all(n @ u >= target - slack))
+
+    if allowed(v):
+        return v
+    options = [v + (target[c] - float(n[c] @ v)) * n[c] for c in range(len(n))]
+    for c in range(len(n)):
+        for e in range(c + 1, len(n)):
+            pair = n[[c, e]]
+            if abs(float(np.linalg.det(pair))) > 1e-12:
+                options.append(np.linalg.solve(pair, target[[c, e]]))
+    options = [u for u in options if allowed(u)]
+    if not options:
+        return None
+    return min(options, key=lambda u: float((u - v) @ (u - v)))

@@ -408,6 +408,37 @@ class RestingRules:
         self.dissipated += 0.5 * self.m[i] * (_dot(v, v) - _dot(best, best))
         self.v[i] = [best[0], best[1]]
 
+    def _lift_within(self, i, bounds):
+        """Disk ``i`` takes the velocity nearest to its own with ``n . u >= speed``
+        for each ``(n, speed)`` of ``bounds`` (unit normals of its static contacts):
+        its own, its projection on one bound's line, or the crossing of two lines,
+        whichever is nearest of those within all bounds (none: it keeps its own).
+        The kinetic energy added is taken from the dissipated tally."""
+        v = self.v[i]
+        size = math.hypot(*v) + max(speed for _, speed in bounds)
+
+        def within(u):
+            return all(_dot(u, n) >= speed - 1e-12 * size for n, speed in bounds)
+
+        if within(v):
+            return
+        options = []
+        for n, speed in bounds:
+            q = speed - _dot(v, n)
+            options.append((v[0] + q * n[0], v[1] + q * n[1]))
+        for k, (n1, s1) in enumerate(bounds):
+            for n2, s2 in bounds[k + 1:]:
+                det = n1[0] * n2[1] - n1[1] * n2[0]
+                if abs(det) > 1e-12:
+                    options.append(((s1 * n2[1] - s2 * n1[1]) / det,
+                                    (n1[0] * s2 - n2[0] * s1) / det))
+        options = [u for u in options if within(u)]
+        if not options:
+            return
+        u = min(options, key=lambda u: (u[0] - v[0]) ** 2 + (u[1] - v[1]) ** 2)
+        self.dissipated -= 0.5 * self.m[i] * (_dot(u, u) - _dot(v, v))
+        self.v[i] = [u[0], u[1]]
+
     def _lift(self, i, n):
         """After disk ``i`` met a static body with unit normal ``n`` (towards the disk)
         that gravity presses it into: it leaves at ``soft`` times the share of
@@ -564,10 +595,19 @@ class RestingRules:
         for k, d in enumerate(members):
             self.v[int(d)] = [float(after[k, 0]), float(after[k, 1])]
         # Each leaves the static disks and segments that gravity presses it into at the
-        # parting speed, contact by contact (on a box wall it slides instead).
-        for c in range(len(a)):
-            if b[c] == -1 and segment[c] >= 0 or b[c] < -1:
-                self._lift(int(a[c]), (float(normal[c, 0]), float(normal[c, 1])))
+        # parting speed, driving into none of its static contacts (a box wall only
+        # bounds it: on a box wall it slides).
+        for d in members.tolist():
+            mine = [c for c in range(len(a)) if a[c] == d and b[c] < 0]
+            bounds = []
+            for c in mine:
+                unit = (float(normal[c, 0]), float(normal[c, 1]))
+                pressing = -_dot(self.gravity, unit)
+                pressed = pressing > 0.0 and side[c] < 0
+                speed = self.rest.soft * pressing / math.hypot(*self.gravity)
+                bounds.append((unit, speed if pressed else 0.0, pressed))
+            if any(pressed for _, _, pressed in bounds):
+                self._lift_within(d, [(unit, speed) for unit, speed, _ in bounds])
         if not stop and not (impulse > 0.0).any() and all(
                 self.v[int(d)] == v for d, v in zip(members, before)):
             return False

@@ -697,13 +697,14 @@ class EngineState:
         members, a, b, side, segment, normal, distance = found
         if len(a) == 0:
             return False
-        after, impulse, lost = _impacts.resolve(members, vel, self.invm, a, b, normal)
         if stop:
-            # (Its impulses are not counted: the static bodies took what the members
-            # lost, as from a wedged disk.)
-            after[:] = 0.0
+            # (No impulses are counted: the static bodies took what the members lost,
+            # as from a wedged disk.)
+            after = np.zeros((len(members), 2))
+            impulse = np.zeros(len(a))
             lost = 0.5 * float(np.sum((vel[members] ** 2).sum(axis=1) / self.invm[members]))
-            impulse = np.zeros_like(impulse)
+        else:
+            after, impulse, lost = _impacts.resolve(members, vel, self.invm, a, b, normal)
         loaded = impulse > 0.0
         added = _impacts.lift(members, after, self.invm, a, b, side, normal, self.gravity,
                               self.families["resting"].soft)

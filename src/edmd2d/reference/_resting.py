@@ -390,30 +390,15 @@ class RestingRules:
             return
         normals = [n] + [normal for _, normal, _ in
                          self._contacts(i, WEDGE_TOUCH * 2.0 * self.r[i])]
-        size = math.hypot(*v)
+        self._nearest_velocity(i, [(normal, 0.0) for normal in normals])
 
-        def allowed(u):
-            return all(_dot(u, normal) >= -1e-12 * size for normal in normals)
-
-        # In two dimensions the nearest velocity in the cone is 0 or a projection of
-        # v on the line of one contact; take the nearest of those allowed.
-        options = [(size, (0.0, 0.0))]
-        for normal in normals:
-            vn = _dot(v, normal)
-            if vn < 0.0:
-                u = (v[0] - vn * normal[0], v[1] - vn * normal[1])
-                if allowed(u):
-                    options.append((-vn, u))
-        _, best = min(options, key=lambda option: option[0])
-        self.dissipated += 0.5 * self.m[i] * (_dot(v, v) - _dot(best, best))
-        self.v[i] = [best[0], best[1]]
-
-    def _lift_within(self, i, bounds):
+    def _nearest_velocity(self, i, bounds):
         """Disk ``i`` takes the velocity nearest to its own with ``n . u >= speed``
         for each ``(n, speed)`` of ``bounds`` (unit normals of its static contacts):
-        its own, its projection on one bound's line, or the crossing of two lines,
-        whichever is nearest of those within all bounds (none: it keeps its own).
-        The kinetic energy added is taken from the dissipated tally."""
+        its own, its projection on one bound's line, or the crossing of two lines
+        (0 where the speeds are 0), whichever is nearest of those within all bounds
+        (none: it keeps its own).  The change of kinetic energy is booked in the
+        dissipated tally (a wedged disk's loss, a lift's gain)."""
         v = self.v[i]
         size = math.hypot(*v) + max(speed for _, speed in bounds)
 
@@ -585,12 +570,12 @@ class RestingRules:
         members, a, b, side, segment, normal, _ = found
         invm = np.array([1.0 / m for m in self.m])
         before = [list(self.v[int(d)]) for d in members]
-        after, impulse, lost = impact_resolve(members, np.array(self.v), invm, a, b,
-                                              normal)
         if stop:
-            after[:] = 0.0
+            after, impulse = np.zeros((len(members), 2)), np.zeros(len(a))
             lost = sum(0.5 * self.m[int(d)] * _dot(v, v) for d, v in zip(members, before))
-            impulse[:] = 0.0
+        else:
+            after, impulse, lost = impact_resolve(members, np.array(self.v), invm, a, b,
+                                                  normal)
         self.dissipated += lost
         for k, d in enumerate(members):
             self.v[int(d)] = [float(after[k, 0]), float(after[k, 1])]
@@ -607,7 +592,7 @@ class RestingRules:
                 speed = self.rest.soft * pressing / math.hypot(*self.gravity)
                 bounds.append((unit, speed if pressed else 0.0, pressed))
             if any(pressed for _, _, pressed in bounds):
-                self._lift_within(d, [(unit, speed) for unit, speed, _ in bounds])
+                self._nearest_velocity(d, [(unit, speed) for unit, speed, _ in bounds])
         if not stop and not (impulse > 0.0).any() and all(
                 self.v[int(d)] == v for d, v in zip(members, before)):
             return False

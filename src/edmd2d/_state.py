@@ -176,6 +176,16 @@ class EngineState:
                           else np.array(wall_open, bool))
         self.cell_size = cell_size
         self.growth = None if growth is None else np.array([growth.rate, self.time])
+        # Lees-Edwards boundaries (the registered family "shear"): the clock of the
+        # images' offset and the integrals of the kinetic stress (see
+        # _engine/sheared.py), started at offset 0 once the grid is built.
+        self.shear = families.get("shear")
+        if self.shear is not None and growth is not None:
+            with about("shear_rate"):
+                raise ValueError("shear_rate does not combine with growth")
+        self.shear_clock: np.ndarray | None = None
+        self.shear_slides: np.ndarray | None = None
+        self.shear_flights: np.ndarray | None = None
         self.build_grid(pos, self.grid_diameter(2.0 * float(rad.max())), cell_size)
         with about("positions"):
             self.check_overlaps(pos, rad)
@@ -253,6 +263,8 @@ class EngineState:
         state.setdefault("rest_frozen", None)
         state.setdefault("rest_t_static", None)
         state.setdefault("wall_open", np.zeros(len(state["walls"]), bool))
+        for name in ("shear", "shear_clock", "shear_slides", "shear_flights"):
+            state.setdefault(name, None)  # (saved before boxes could be sheared)
         state["log_capacity"] = 0  # (a copy does not stream)
         acc = state["acc"]
         if len(acc) < _layout.N_ACC:  # (saved before gravity could be changed)
@@ -285,9 +297,21 @@ class EngineState:
             side = max(cell_size, side_min)
         ncx = max(1, int(width // side))
         ncy = max(1, int(height // side))
+        if self.shear is not None:
+            # Four columns and three rows at least (see _engine/sheared.py).
+            ncx = max(ncx, 4)
+            ncy = max(ncy, 3)
+            if min(width / ncx, height / ncy) < side_min:
+                with about("shear_rate"):
+                    raise ValueError(
+                        f"a sheared box must be at least 4 largest diameters wide and 3 "
+                        f"high, got {width:g} x {height:g} for diameter {dmax:g}")
         periodic = self.box.periodic
+        old_ncx = int(self.gi[0]) if hasattr(self, "gi") else 0
         self.gi = np.array([ncx, ncy, int(periodic[0]), int(periodic[1])], np.int64)
         self.gf = np.array([width, height, width / ncx, height / ncy], np.float64)
+        if self.shear is not None and ncx != old_ncx:
+            self.start_shear(0.0 if self.shear_clock is None else self.shear_offsets()[1])
         self.head = np.empty(ncx * ncy, np.int32)
         _grid.build_cells(pos, self.gi, self.gf, self.E[:, _layout.CELL], self.head,
                           self.nxt, self.prv)
@@ -452,9 +476,14 @@ class EngineState:
         return out
 
     def unwrapped(self) -> np.ndarray:
-        """Unwrapped centres at :attr:`time`, in internal row order."""
-        return (_flight.positions_at(self.time, self.S, self.gravity_bundle())
-                + self.image * self.box.size)
+        """Unwrapped centres at :attr:`time`, in internal row order; under shear the
+        path through the sliding images, ``x + image_x width + image_y D`` with ``D``
+        the images' whole offset (:meth:`shear_offsets`)."""
+        out = (_flight.positions_at(self.time, self.S, self.gravity_bundle())
+               + self.image * self.box.size)
+        if self.shear is not None:
+            out[:, 0] += self.image[:, 1] * self.shear_offsets()[1]
+        return out
 
     def velocities(self) -> np.ndarray:
         """Velocities at :attr:`time`, in internal row order (a new array)."""
@@ -604,7 +633,7 @@ class EngineState:
             _layout.Tallies(self.counts, self.acc, self.wacc),
             self.log_bundle(),
             families.contact, families.heated, families.thermostat, families.uniforms,
-            self.gravity_bundle(), self.growth_bundle(), rest,
+            self.gravity_bundle(), self.growth_bundle(), rest, self.shear_bundle(),
         )
 
     def rest_bundle(self):
@@ -810,6 +839,66 @@ class EngineState:
         return (None if g is None else
                 _layout.Gravity(float(g[0]), float(g[1]), self.invm,
                                 _layout.support_view(self.S)))
+
+    # ------------------------------------------------------------------ shear
+    def start_shear(self, unreduced: float) -> None:
+        """Start the clock of the images' offset at :attr:`time`, where the offset not
+        reduced by box widths is ``unreduced`` (0 when the shear starts): the slides
+        since it was 0 (whole cell widths, rounded towards the direction of flow),
+        when the next is due, and the offset at the last (see _engine/sheared.py)."""
+        assert self.shear is not None
+        w = float(self.gf[2])
+        ncx = int(self.gi[0])
+        speed = self.shear.rate * self.box.height
+        cells = unreduced / w
+        m = math.floor(cells)
+        if speed < 0.0 and m == cells:
+            m -= 1  # (moving down from exactly a cell's edge: in the cell below it)
+        k = m % ncx
+        reduced = unreduced - self.box.width * (m // ncx)  # (within [k w, (k + 1) w])
+        edge = (k + 1) * w if speed > 0.0 else k * w  # where the next slide is due
+        self.shear_slides = np.array([m], np.int64)
+        self.shear_clock = np.array([self.time, self.time + (edge - reduced) / speed,
+                                     reduced])
+        if self.shear_flights is None:
+            self.shear_flights = np.zeros(3)
+
+    def shear_offsets(self, t: float | None = None) -> tuple[float, float]:
+        """The offset of the images above at ``t`` (default :attr:`time`, not before
+        the last slide): reduced to the box width, and not reduced (the images'
+        whole displacement since the shear started)."""
+        assert self.shear_clock is not None and self.shear_slides is not None
+        t = self.time if t is None else t
+        clock = self.shear_clock
+        reduced = clock[2] + self.shear.rate * self.box.height * (t - clock[0])
+        whole = int(self.shear_slides[0]) // int(self.gi[0])
+        return float(reduced), float(reduced + self.box.width * whole)
+
+    def shear_bundle(self):
+        """The engine's shear family: ``None`` or a ``layout.Shear``."""
+        if self.shear is None:
+            return None
+        n = len(self.S)
+        return _layout.Shear(self.shear.rate, self.shear.rate * self.box.height,
+                             0.5 * self.box.height, self.shear_clock, self.shear_slides,
+                             np.empty(n, np.int64), np.empty(n), self.shear_flights)
+
+    def kinetic_stress_integral(self) -> np.ndarray:
+        """Under shear: the time integrals since the shear started of ``sum m u_x^2``,
+        ``sum m u_y^2`` and ``sum m u_x u_y`` over the peculiar velocities ``u``, up
+        to :attr:`time` (the flights since each disk's last event included, exactly)."""
+        assert self.shear is not None and self.shear_flights is not None
+        S = self.S
+        g = self.shear.rate
+        tau = self.time - S[:, _layout.T]
+        m = 1.0 / self.invm
+        vy = S[:, _layout.VY]
+        ux = S[:, _layout.VX] - g * (S[:, _layout.Y] - 0.5 * self.box.height)
+        gv = g * vy * tau
+        return self.shear_flights + np.array([
+            dot(m * tau, ux * ux - gv * ux + gv * gv / 3.0),
+            dot(m * tau, vy * vy),
+            dot(m * tau, vy * (ux - 0.5 * gv))])
 
     def growth_bundle(self):
         """The engine's growth family: ``None`` (fixed radii) or a ``layout.Growth``."""

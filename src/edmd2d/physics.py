@@ -21,7 +21,7 @@ Examples
 --------
 >>> from edmd2d import physics
 >>> list(physics.FAMILIES)
-['restitution', 'gravity', 'heated_walls', 'thermostat', 'growth', 'resting']
+['restitution', 'gravity', 'heated_walls', 'thermostat', 'growth', 'resting', 'shear']
 >>> physics.Thermostat.check(thermostat=(1.0, 0.5))
 Thermostat(temperature=1.0, rate=0.5)
 >>> physics.Gravity.check(gravity=(0.0, 0.0)) is None   # (no gravity: straight flights)
@@ -46,7 +46,8 @@ from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, Box
 
 __all__ = ["Keyword", "System", "Family", "FAMILIES", "KEYWORDS", "register", "unregister",
            "owner", "about",
-           "Restitution", "Gravity", "HeatedWalls", "Thermostat", "Growth", "Resting"]
+           "Restitution", "Gravity", "HeatedWalls", "Thermostat", "Growth", "Resting",
+           "Shear"]
 
 
 @dataclass(frozen=True)
@@ -64,7 +65,8 @@ class Keyword:
         What a configuration file gives: ``"coefficient"`` (a number in ``(0, 1]``),
         ``"coefficients"`` (one, or a square table per pair of species),
         ``"duration"`` (a number ``>= 0``), ``"vector"`` (two numbers),
-        ``"switch"`` (true or false), ``"length"`` (a number ``> 0``) or ``"walls"``
+        ``"switch"`` (true or false), ``"length"`` (a number ``> 0``), ``"rate"`` (a
+        number of either sign) or ``"walls"``
         (a table ``{wall = kT}``); ``""`` for a keyword that configuration files do not
         take.
     doc : str
@@ -882,7 +884,82 @@ class Resting(Family):
         return {"resting": True, "rest_height": float(log["rest_height"][0])}
 
 
-for _family in (Restitution, Gravity, HeatedWalls, Thermostat, Growth, Resting):
+@dataclass(frozen=True, eq=False)
+class Shear(Family):
+    """Lees-Edwards (sliding-brick) boundaries: a box periodic on both axes whose images
+    above slide along x at ``rate * height`` (those below at ``-rate * height``),
+    shearing the disks at the shear rate ``rate``.
+
+    The flow's velocity is ``(rate (y - height / 2), 0)``; a disk's velocity relative
+    to it is its *peculiar* velocity, which a disk keeps when it leaves through the top
+    or the bottom (its x velocity changes by ``-+ rate * height`` and its x by the
+    images' offset).  The thermostat draws peculiar velocities.  The offset of the
+    images above is 0 when the shear starts (the simulation's ``time``) and grows as
+    ``rate * height * t``, taken modulo the width.
+
+    Shear needs a box periodic on both axes, at least four largest diameters wide and
+    three high (the grid's cells along the boundary; a box too small is refused), and
+    does not combine with wall segments, gravity, growth, immovable disks or disks
+    that come to rest.
+
+    Attributes
+    ----------
+    rate : float
+        The shear rate (either sign; ``0``: no shear).
+    """
+
+    name: ClassVar[str] = "shear"
+    keywords: ClassVar[tuple[Keyword, ...]] = (
+        Keyword("shear_rate", None, "rate",
+                "the shear rate of Lees-Edwards boundaries (default: none)"),
+    )
+
+    rate: float
+
+    @classmethod
+    def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
+            cls, system: System | None = None, *,
+            shear_rate: float | None = None) -> Shear | None:
+        """``None`` (no shear, also for 0) or Lees-Edwards boundaries at ``shear_rate``.
+
+        Parameters
+        ----------
+        system : System
+            Its box, segments, gravity and masses.
+        shear_rate : float, optional
+
+        Returns
+        -------
+        Shear or None
+
+        Raises
+        ------
+        ValueError
+            For a rate that is not a finite number, or a system that shear does not
+            combine with.
+        """
+        assert system is not None  # (checked with the system, which it needs)
+        if shear_rate is None:
+            return None
+        with about("shear_rate"):
+            rate = float(as_float_array("shear_rate", shear_rate, ()))
+            if rate == 0.0:
+                return None
+            if not all(system.box.periodic):
+                raise ValueError("shear_rate needs a box periodic on both axes "
+                                 "(Lees-Edwards boundaries slide its images above and "
+                                 "below)")
+            if system.n_segments:
+                raise ValueError("shear_rate does not combine with wall segments")
+            if system.gravity is not None:
+                raise ValueError("shear_rate does not combine with gravity")
+            if np.isinf(system.masses).any():
+                raise ValueError("shear_rate does not combine with immovable disks "
+                                 "(infinite masses)")
+        return cls(rate)
+
+
+for _family in (Restitution, Gravity, HeatedWalls, Thermostat, Growth, Resting, Shear):
     register(_family)
 
 

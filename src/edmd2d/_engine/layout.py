@@ -26,7 +26,8 @@ The bundles (:class:`typing.NamedTuple`, read by field name in the compiled code
 declared at the end: the loop's own state (:class:`Control`, :class:`Particles`,
 :class:`Grid`, :class:`Walls`, :class:`Calendar`, :class:`Tallies`, :class:`Log`) and
 one per physics family (:class:`Contact`, :class:`HeatedWalls`, :class:`Thermostat`,
-:class:`Uniforms`, :class:`Gravity`, :class:`Growth`, :class:`Rest`).  A family that a
+:class:`Uniforms`, :class:`Gravity`, :class:`Growth`, :class:`Rest`,
+:class:`Shear`).  A family that a
 system does not use is passed as ``None``: numba prunes its branches from the loop
 compiled for it.
 """
@@ -129,6 +130,7 @@ class Kind(IntEnum):
     KICK = 5  # a thermostat's velocity redraw (never a kept candidate)
     REST = 6  # a disk put to rest (logged only; see .resting)
     WAKE = 7  # a disk at rest woken (logged only)
+    SLIDE = 8  # the sliding images of a sheared box step by a cell (never logged)
 
 
 # (Plain ints for the compiled code.)
@@ -140,6 +142,7 @@ CROSS = int(Kind.CROSS)
 KICK = int(Kind.KICK)
 REST = int(Kind.REST)
 WAKE = int(Kind.WAKE)
+SLIDE = int(Kind.SLIDE)
 KIND_MASK = 15  # low bits of E[:, KIND]; the bits above hold a crossing's direction
 
 
@@ -489,6 +492,30 @@ class Rest(NamedTuple):
     log: Log
     #: int64: each row's user index (for the log).
     order: np.ndarray
+
+
+class Shear(NamedTuple):
+    """Lees-Edwards boundaries: the images above and below slide along x (see
+    :mod:`.sheared`)."""
+
+    #: The shear rate: the flow's x velocity grows by ``rate`` per unit of y.
+    rate: float
+    #: ``U = rate * height``: the velocity of the images above relative to the box.
+    speed: float
+    #: ``height / 2``: where the flow's velocity is zero.
+    half: float
+    #: float64, shape (3,): the time of the last slide, of the next, and the offset at
+    #: the last (``sheared.T_BASE``, ``T_NEXT``, ``DELTA_BASE``).
+    clock: np.ndarray
+    #: int64, shape (1,): slides since the offset was 0 (negative for ``rate < 0``).
+    slides: np.ndarray
+    #: int64, shape (N,): room for the disks a slide predicts afresh.
+    rows: np.ndarray
+    #: float64, shape (N,): room for their predicted times.
+    times: np.ndarray
+    #: float64, shape (3,): the time integrals over free flights of ``sum m u_x^2``,
+    #: ``sum m u_y^2`` and ``sum m u_x u_y`` (``u`` the peculiar velocity).
+    flights: np.ndarray
 
 
 class ModelFamilies(NamedTuple):

@@ -46,7 +46,12 @@ argument per physics family, each ``None`` when unused:
 ``rest``
     disks that come to rest under gravity (``layout.Rest``, :mod:`.resting`; with
     ``gravity`` only): after each collision a slow, held disk is put to rest, and a
-    flying disk meets a resting one as a fixed circle unless the impact wakes it.
+    flying disk meets a resting one as a fixed circle unless the impact wakes it;
+``shear``
+    Lees-Edwards boundaries (``layout.Shear``, :mod:`.sheared`): the images above and
+    below the box slide along x; when they have slid by a cell width (a ``SLIDE``, due
+    at ``shear.clock[T_NEXT]``, processed before any later event and never logged),
+    the disks of the top and bottom rows of cells are predicted afresh.
 
 numba prunes the branches of an argument that is ``None``, so each combination of
 families compiles its own ``run``, only when used, and the elastic default compiles to
@@ -60,7 +65,7 @@ import math
 import numpy as np
 
 from .._jit import kernel, njit
-from . import lookahead, prefetch, queue, response, resting
+from . import lookahead, prefetch, queue, response, resting, sheared
 from .flight import drift, velocity_at
 from .grid import insert, remove
 from .layout import (
@@ -90,6 +95,7 @@ from .layout import (
     REACHED_EVENT_LIMIT,
     REACHED_TIME,
     SEGMENT,
+    SLIDE,
     STAGED,
     VX,
     VY,
@@ -163,7 +169,7 @@ def _make_room(m, k, log_t, log_e, log_j):
 
 @kernel
 def run(control, particles, grid, walls, calendar, tallies, log,
-        contact, heated, thermostat, uniforms, gravity, growth, rest):
+        contact, heated, thermostat, uniforms, gravity, growth, rest, shear):
     """Process events in time order (``control.mode`` RUN_EVENTS), or (``mode``
     PREDICT_ALL) predict every disk's next event from the time ``out[0]`` and rebuild
     the queue.  (``t_end``, ``max_collisions``, ``max_events``, ``mode``, ``out`` and
@@ -248,6 +254,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
     redo1 = -1
     direction = -1
     stale = False
+    sliding = False
     mark = -1
     t_redo0 = INF
     t_redo1 = INF
@@ -263,11 +270,23 @@ def run(control, particles, grid, walls, calendar, tallies, log,
             # (Every test of a family starts with `family is not None`: numba prunes it
             # all from a loop without it, which compiles as if it were not there.)
             kicked = False
-            if uniforms is not None:
+            sliding = False
+            if shear is not None:
+                # The images' slide by a cell, due before the next event (or at its
+                # time) or the next redraw, comes first.
+                t_slide = shear.clock[sheared.T_NEXT]
+                if t_slide <= t_end and (i < 0 or t_slide <= qt[i]) and (
+                        thermostat is None or t_slide <= thermostat.t_next[0]):
+                    if n_ev >= max_events:
+                        status = REACHED_EVENT_LIMIT
+                        break
+                    sliding = True
+                    t = t_slide
+            if uniforms is not None and not sliding:
                 if response.needs_random(uniforms):
                     status = NEED_RANDOM
                     break
-            if thermostat is not None:
+            if thermostat is not None and not sliding:
                 # A thermostat redraw due before the next event (or at its time) comes
                 # first.
                 t_kick = thermostat.t_next[0]
@@ -282,6 +301,10 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                         continue  # (an immovable disk keeps its velocity)
             if thermostat is not None and kicked:
                 kind = KICK
+                partner = -1
+                aux = -1
+            elif shear is not None and sliding:
+                kind = SLIDE
                 partner = -1
                 aux = -1
             else:
@@ -348,6 +371,9 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     status = ERR_STALLED
                     break
                 else:
+                    if shear is not None:
+                        sheared.flight(i, t, S, invm, shear)
+                        sheared.flight(j, t, S, invm, shear)
                     drift(i, t, S, gravity)
                     drift(j, t, S, gravity)
                     still = False  # (j at rest, and staying so)
@@ -379,7 +405,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                             held_i = gravity.support[i]
                             held_j = gravity.support[j]
                         response.collide_pair(i, j, t, aux, S, invm, acc, gf, contact,
-                                              gravity, growth)
+                                              gravity, growth, shear)
                         if rest is not None:
                             resting.part(i, j, aux, held_i, held_j, S, invm, acc, gf,
                                          gravity, rest)
@@ -442,12 +468,18 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     resting.wake(i, t, i, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi,
                                  gf, head, nxt, wa, wb, wstart, wwall, wsx, wsy, acc,
                                  counts, heated, gravity, rest)
+                if shear is not None:
+                    sheared.flight(i, t, S, invm, shear)
                 drift(i, t, S, gravity)
-                response.redraw(i, S, invm, acc, thermostat, uniforms, gravity)
+                response.redraw(i, S, invm, acc, thermostat, uniforms, gravity, shear)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_KICKS] += 1
+            elif shear is not None and kind == SLIDE:
+                npred = sheared.slide(shear, gi, gf, head, nxt)
             else:  # CROSS
+                if shear is not None:
+                    sheared.flight(i, t, S, invm, shear)
                 drift(i, t, S, gravity)
                 c = E[i, CELL]
                 cy = c // ncx
@@ -461,6 +493,8 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 if wrapped:
                     S[i, X + axis] -= wrap * gf[axis]
                     image[i, axis] += wrap
+                    if shear is not None and axis == 1:
+                        cx = sheared.wrap(i, t, wrap > 0, S, image, gi, gf, shear)
                 remove(i, c, head, nxt, prv)
                 c = cx + ncx * cy
                 insert(i, c, head, nxt, prv)
@@ -473,9 +507,12 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 else:
                     redo0 = i
                     direction = aux
+                    if shear is not None and (cy == 0 or cy == ncy - 1):
+                        direction = -1  # (an edge row: its neighbours slide)
                 counts[C_CROSSINGS] += 1
 
-            npred = 0 if redo0 < 0 else (1 if redo1 < 0 else 2)
+            if not (shear is not None and sliding):
+                npred = 0 if redo0 < 0 else (1 if redo1 < 0 else 2)
 
         # (One call site each for the prediction and the queue update: both are
         # compiled into the loop, and a second copy would lengthen compilation.)
@@ -485,14 +522,19 @@ def run(control, particles, grid, walls, calendar, tallies, log,
             if mode == PREDICT_ALL:
                 d = k
                 dk = -1
+            elif shear is not None and sliding:
+                d = shear.rows[k]
+                dk = -1
             else:
                 d = redo0 if k == 0 else redo1
                 dk = direction if k == 0 else -1
             t_new = predict(d, t, dk, S, E, tcand, stamp, gi, gf, head, nxt,
-                            wa, wb, wstart, wwall, wsx, wsy, gravity, growth)
+                            wa, wb, wstart, wwall, wsx, wsy, gravity, growth, shear)
             E[d, STAGED] = 0  # (a new event: no stage of the lookahead yet)
             if mode == PREDICT_ALL:
                 qt[d] = t_new
+            elif shear is not None and sliding:
+                shear.times[k] = t_new
             else:
                 queue.prefetch_update(d, t_new, E, qhead, qs, qf)
                 if k == 0:
@@ -503,15 +545,18 @@ def run(control, particles, grid, walls, calendar, tallies, log,
             queue.build(t, qt, qt, E, hv, qhead, qs, qf)
             break
         for k in range(npred):
-            queue.set_time(redo0 if k == 0 else redo1, t_redo0 if k == 0 else t_redo1,
-                           qt, E, hv, qhead, qs, qf)
+            if shear is not None and sliding:
+                queue.set_time(shear.rows[k], shear.times[k], qt, E, hv, qhead, qs, qf)
+            else:
+                queue.set_time(redo0 if k == 0 else redo1,
+                               t_redo0 if k == 0 else t_redo1, qt, E, hv, qhead, qs, qf)
         if stale:
             counts[C_STALE] += 1
             continue
 
         n_ev += 1
         out[0] = t
-        if kind != CROSS and log_cap > 0:
+        if kind != CROSS and log_cap > 0 and not (shear is not None and sliding):
             k = log_n[0]
             if k < log_t.shape[0]:
                 slot = k

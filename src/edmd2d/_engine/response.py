@@ -44,6 +44,7 @@ from __future__ import annotations
 import math
 
 from .._jit import njit
+from . import sheared
 from .layout import (
     A_BOX,
     A_DISSIPATED,
@@ -124,16 +125,28 @@ def kick(n, thermostat, uniforms):
 
 
 @njit
-def redraw(k, S, invm, acc, thermostat, uniforms, gravity):
+def redraw(k, S, invm, acc, thermostat, uniforms, gravity, shear):
     """Draw the velocity of movable disk ``k`` from the Maxwell-Boltzmann distribution
     at the thermostat's ``kT`` (each component Gaussian with variance ``kT / m``), and
     add the kinetic energy gained to the thermostat's tally.  Under gravity it leaves
-    any wall it rested on."""
+    any wall it rested on.  Under shear the draw is the peculiar velocity, relative to
+    the flow ``rate (y - height / 2)`` at the disk, and the tally counts the peculiar
+    kinetic energy."""
     s = math.sqrt(thermostat.kt * invm[k])
-    before = S[k, VX] * S[k, VX] + S[k, VY] * S[k, VY]
-    S[k, VX] = s * _gaussian(uniforms)
-    S[k, VY] = s * _gaussian(uniforms)
-    acc[A_THERMOSTAT] += 0.5 * (S[k, VX] * S[k, VX] + S[k, VY] * S[k, VY] - before) / invm[k]
+    if shear is not None:
+        flow = shear.rate * (S[k, Y] - shear.half)
+        ux = S[k, VX] - flow
+        before = ux * ux + S[k, VY] * S[k, VY]
+        ux = s * _gaussian(uniforms)
+        S[k, VX] = ux + flow
+        S[k, VY] = s * _gaussian(uniforms)
+        acc[A_THERMOSTAT] += 0.5 * (ux * ux + S[k, VY] * S[k, VY] - before) / invm[k]
+    else:
+        before = S[k, VX] * S[k, VX] + S[k, VY] * S[k, VY]
+        S[k, VX] = s * _gaussian(uniforms)
+        S[k, VY] = s * _gaussian(uniforms)
+        acc[A_THERMOSTAT] += (0.5 * (S[k, VX] * S[k, VX] + S[k, VY] * S[k, VY] - before)
+                              / invm[k])
     if gravity is not None:
         gravity.support[k] = 0
 
@@ -207,7 +220,7 @@ def _note_collision(i, t, invm, contact):
 
 
 @njit(inline="always")
-def collide_pair(i, j, t, aux, S, invm, acc, gf, contact, gravity, growth):
+def collide_pair(i, j, t, aux, S, invm, acc, gf, contact, gravity, growth, shear):
     """Resolve the contact of disks ``i`` and ``j`` (both at time ``t``; ``j`` seen
     through the periodic image shift ``aux``), and add its impulse to the collision
     virial.  A contact that rounding left not approaching exchanges nothing.  Under
@@ -218,16 +231,23 @@ def collide_pair(i, j, t, aux, S, invm, acc, gf, contact, gravity, growth):
     with ``vn`` the normal relative velocity (the rate at which the centres part), the
     gap closes at ``dd - vn``; the collision reverses that rate, ``vn' - dd = dd - vn``,
     so that the disks part (elastic in the frame of the growing rims; it adds kinetic
-    energy, the work of the growth)."""
+    energy, the work of the growth).
+
+    Under shear ``j`` may be seen through the sliding boundary (:mod:`.sheared`): the
+    separation and relative velocity are then those of its sliding image."""
     sx, sy = unpack_shift(aux)
-    dx = S[i, X] - (S[j, X] + sx * gf[0])
-    dy = S[i, Y] - (S[j, Y] + sy * gf[1])
+    if shear is not None and sy != 0:
+        dx, dy, dvx, dvy = sheared.separation(i, j, sy, t, S, gf, shear)
+        s = dvx * dx + dvy * dy
+    else:
+        dx = S[i, X] - (S[j, X] + sx * gf[0])
+        dy = S[i, Y] - (S[j, Y] + sy * gf[1])
+        s = (S[i, VX] - S[j, VX]) * dx + (S[i, VY] - S[j, VY]) * dy
     # The impulse is along the separation d itself, not along a unit normal d / |d|,
     # whose computed squared length misses 1 by a rounding that is positive on
     # average and makes the energy drift upwards; with d and d.d the rounding errors
     # average out, and no square root is taken (docs/performance-notes.md, section 4).
     dd = dx * dx + dy * dy
-    s = (S[i, VX] - S[j, VX]) * dx + (S[i, VY] - S[j, VY]) * dy
     if growth is not None:
         s = _closing_pair(i, j, t, s, S, growth)
     if s < 0.0:

@@ -17,7 +17,7 @@ must be scanned.  A wrap, or a stale kept candidate, falls back to a full scan.
 from __future__ import annotations
 
 from .._jit import njit
-from . import prefetch
+from . import prefetch, sheared
 from .flight import acceleration, position_at, velocity_at
 from .grid import neighbour
 from .layout import (
@@ -71,7 +71,8 @@ def _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, gravity, best):
 
 @njit(inline="always")
 def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
-                S, stamp, gi, gf, head, nxt, best, partner, aux, pst, gravity, growth):
+                S, stamp, gi, gf, head, nxt, best, partner, aux, pst, gravity, growth,
+                shear):
     """Earliest contact of disk ``i`` (at ``x, y`` with velocity ``vx, vy`` at time
     ``t``) with the disks in the cells at offsets ``[ox0, ox1] x [oy0, oy1]`` from
     ``(cx, cy)``, if before ``best`` (a time interval from ``t``).
@@ -82,7 +83,10 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
     (:func:`point_time`).
 
     Under growth ``r`` is the stored radius ``S[i, R]``, and the contact distance
-    ``(r + S[j, R])`` times :func:`growth_factor` grows at ``(r + S[j, R]) rate``."""
+    ``(r + S[j, R])`` times :func:`growth_factor` grows at ``(r + S[j, R]) rate``.
+
+    Under shear the rows across the sliding boundary are scanned by
+    :func:`.sheared.scan_across`, after the others."""
     gxi, gyi = acceleration(i, gravity)
     f = growth_factor(t, growth)
     ncx = gi[0]
@@ -93,6 +97,8 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
         for oy in range(oy0, oy1 + 1):
             nyc, sy = neighbour(cy, oy, gi[1], gi[3] != 0)
             if nyc < 0:
+                continue
+            if shear is not None and sy != 0:
                 continue
             j = head[nxc + ncx * nyc]
             while j >= 0:
@@ -115,6 +121,10 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
                         aux = pack_shift(sx, sy)
                         pst = stamp[j]
                 j = nxt[j]
+    if shear is not None:
+        best, partner, aux, pst = sheared.scan_across(i, t, x, y, vx, vy, r, cx, cy, oy0,
+                                                      oy1, S, stamp, gi, gf, head, nxt,
+                                                      best, partner, aux, pst, shear)
     return best, partner, aux, pst
 
 
@@ -170,7 +180,7 @@ def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tcand, E, gi, gf, gravity):
 
 @njit(inline="always")
 def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
-            wa, wb, wstart, wwall, wsx, wsy, gravity, growth):
+            wa, wb, wstart, wwall, wsx, wsy, gravity, growth, shear):
     """Predict disk ``i``'s next event from time ``t``, keep its best non-crossing
     candidate, and return the time of the scheduled event.
 
@@ -181,6 +191,7 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
     scanned against it, otherwise the prediction is a full one.
 
     ``growth``: ``None``, or radii that grow (``layout.Growth``, :func:`growth_factor`).
+    ``shear``: ``None``, or Lees-Edwards boundaries (``layout.Shear``, :mod:`.sheared`).
 
     (One function for both, compiled into the event loop at a single place.)
     """
@@ -258,7 +269,7 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
     pst = 0
     bd, pd, ad, ps = _scan_disks(i, t, x, y, vx, vy, S[i, R], cx, cy, ox0, ox1, oy0, oy1,
                                  S, stamp, gi, gf, head, nxt, best, -1, 0, 0, gravity,
-                                 growth)
+                                 growth, shear)
     if bd < best:
         best = bd
         kind = DISK

@@ -30,6 +30,13 @@ Under gravity, disks may come to rest (``resting``): a slow disk held by static 
 stops being moved until an impact, a support leaving or a thermostat wakes it, by
 the rules of :class:`edmd2d.physics.Resting`, written out plainly in ``_resting.py``.
 
+Under shear (``shear_rate``), a box periodic on both axes has Lees-Edwards
+(sliding-brick) boundaries: the images of the box above slide along x at ``shear_rate *
+height``, those below the other way, and a disk leaving through the top or the bottom
+comes back as its image, with that image's velocity.  The search tries the sliding
+images, and the collision rules act on them, as on any periodic image; tallies of the
+collisional virial and of the kinetic stress over the flights give the shear stress.
+
 The code comes in five parts: the contact-time oracles (``_times.py``), the search for
 the earliest contact (``_search.py``), the collision rules (``_rules.py``), the rules
 of disks at rest (``_resting.py``) and the event loop with the simulation's state

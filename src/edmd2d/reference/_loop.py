@@ -3,7 +3,8 @@
 The simulation keeps every disk's state in plain lists and repeats one step: find the
 earliest event (a contact, by the search of ``_search``, or a thermostat redraw), move
 every disk to it, resolve it (the rules of ``_rules``), and wrap the centres back
-into a periodic box.
+into a periodic box, or, under shear, a box with Lees-Edwards (sliding-brick)
+boundaries: see :class:`ReferenceSimulation`.
 """
 
 from __future__ import annotations
@@ -71,7 +72,9 @@ class ReferenceSimulation(CollisionRules):
         ``(kT, rate)``: an Andersen thermostat.  Its redraws come at the events of a
         Poisson process of ``rate * N`` (waiting times ``-ln(1 - u) / (rate N)``),
         each picking disk ``floor(u N)`` (an immovable one is left alone) and drawing
-        both velocity components as ``sqrt(kT/m) g``.
+        both velocity components as ``sqrt(kT/m) g``: under shear those of its
+        peculiar velocity, ``vx = sqrt(kT/m) g1 + gamma (y - height/2)``,
+        ``vy = sqrt(kT/m) g2``.
     seed : int, optional
         Seed of the ``numpy.random.default_rng`` stream of uniforms ``u`` in
         ``[0, 1)`` behind every random draw, used in this order: the first waiting
@@ -90,6 +93,14 @@ class ReferenceSimulation(CollisionRules):
         ``wake``, ``press``, ``soft``, ``instant`` and ``every``), by the rules written out in
         ``_resting.py``; the TC model then holds no disk on a box wall.  Pass the
         engine's own (``Simulation`` holds it when disks rest) to compare the two.
+    shear_rate : float, default 0.0
+        Lees-Edwards boundaries sliding at the shear rate ``gamma`` (either sign; see
+        the notes): the images above move along x at ``U = gamma * height``.  A
+        nonzero rate needs a box periodic on both axes, no wall segments, no gravity,
+        no growth and no ``resting`` (:class:`ValueError` otherwise).  ``0`` runs the
+        code of an ordinary periodic box, bit for bit as without it.
+    shear_offset : float, default 0.0
+        The offset of the images above at ``time`` (under shear).
 
     Attributes
     ----------
@@ -124,7 +135,22 @@ class ReferenceSimulation(CollisionRules):
     images : list of [int, int]
         For each disk, the whole periodic lengths taken off each coordinate when it was
         wrapped back into the box: ``p + images * (width, height)`` is its unwrapped
-        position, which :meth:`potential_energy` uses.
+        position, which :meth:`potential_energy` uses; under shear the x coordinate
+        also takes ``images[1] * D(t)`` (see :attr:`unwrapped_positions`).
+    shear_rate : float
+        The shear rate ``gamma`` (0: no shear).
+    t0 : float
+        The ``time`` of construction, where the images' offset is ``shear_offset``.
+    shear_offset : float
+        The offset at ``t0``.
+    thermostat_energy : float
+        The kinetic energy the thermostat's redraws gave the disks (under shear, the
+        kinetic energy of their peculiar velocities).
+    virial_xx, virial_yy, virial_xy : float
+        The collisional virial: ``sum r_a J_b`` over every disk-disk collision so far,
+        ``r`` the separation of the disks at contact (from the image of the partner to
+        the disk) and ``J`` the impulse on the disk (bounces off disks at rest, with
+        ``resting``, aside).
 
     Notes
     -----
@@ -169,6 +195,28 @@ class ReferenceSimulation(CollisionRules):
     The periodic look-ahead window accounts for the acceleration: a disk moves at most
     ``|v| h + |g| h^2 / 2`` in a time ``h``.
 
+    Under shear (Lees-Edwards boundaries, rate ``gamma``, box ``Lx`` by ``Ly``) the
+    images of the box above slide along x at ``U = gamma Ly``, those below at ``-U``.
+    With the *offset* ``delta(t) = (delta_0 + U (t - t0)) mod Lx`` in ``[0, Lx)``
+    (``delta_0``: ``shear_offset``), the image of disk ``j`` in box ``(sx, sy)`` (any
+    integers) is at ``(x_j + sy delta(t) + sx Lx, y_j + sy Ly)`` with velocity ``(vx_j +
+    sy U, vy_j)``.  A pair meets through an image in straight flight (relative position
+    ``p_i`` less the image's, relative velocity ``v_i`` less the image's) and collides
+    as usual with the image: the impulse along their separation acts on ``v_i`` and,
+    opposite, on ``v_j``.  A centre leaving through the top (``y >= Ly``) comes back as
+    its image below: ``y -= Ly``, ``x -= delta(t)``, ``vx -= U`` (through the bottom:
+    ``+=``), then x is wrapped into ``[0, Lx)``.  The *peculiar* velocity, the velocity
+    relative to the flow ``(gamma (y - Ly/2), 0)``, is ``u = (vx - gamma (y - Ly/2),
+    vy)``: continuous across the top and the bottom, and in flight ``du_x/dt = -gamma
+    vy``.  Its kinetic energy :meth:`peculiar_kinetic_energy` obeys, for elastic
+    collisions without thermostat, ``K(t) - K(t') = -gamma (I_xy + virial_xy)`` over the
+    run between ``t'`` and ``t``, where ``I_xy`` is the integral of ``sum m u_x u_y`` of
+    :meth:`kinetic_stress_integral`: in flight ``d(m u_x^2/2)/dt = -gamma m u_x u_y``,
+    and a collision, elastic in the frame of the image, changes ``K`` by ``-gamma r_y
+    J_x``.  (Inelastic collisions take ``dissipated`` off too, redraws add
+    ``thermostat_energy``.)  The total peculiar momentum ``sum m u`` changes in flight
+    at ``-gamma (P_y, 0)`` only, ``P_y`` the (conserved) y momentum.
+
     Examples
     --------
     A head-on collision with ``e = 0.5``: the relative speed 2 drops to 1, and a quarter
@@ -205,7 +253,8 @@ class ReferenceSimulation(CollisionRules):
                  gravity: tuple[float, float] = (0.0, 0.0),
                  wall_temperatures: dict | None = None,
                  thermostat: tuple[float, float] | None = None, seed: int | None = None,
-                 growth: float | None = None, resting: Any = None) -> None:
+                 growth: float | None = None, resting: Any = None,
+                 shear_rate: float = 0.0, shear_offset: float = 0.0) -> None:
         n = len(positions)
         # (Required: its default only lets it follow masses as a keyword.)
         assert box is not None, "ReferenceSimulation needs a box"
@@ -236,8 +285,30 @@ class ReferenceSimulation(CollisionRules):
         gx, gy = gravity
         self.gravity = (float(gx), float(gy))
         # Whole periodic lengths taken off each coordinate by _wrap: the unwrapped
-        # position, which the potential energy needs, is p + images * length.
+        # position, which the potential energy needs, is p + images * length (under
+        # shear, plus images[1] D(t) along x: see unwrapped_positions).
         self.images = [[0, 0] for _ in range(n)]
+        # Lees-Edwards boundaries: the shear rate, and the time t0 of offset 0.
+        self.shear_rate = float(shear_rate)
+        self.t0 = self.time
+        self.shear_offset = float(shear_offset)  # the offset at t0
+        if self.shear_rate != 0.0:
+            if self.box.periodic != (True, True):
+                raise ValueError("shear_rate needs a box periodic on both axes")
+            if self.walls:
+                raise ValueError("shear_rate does not combine with wall segments")
+            if self.gravity != (0.0, 0.0):
+                raise ValueError("shear_rate does not combine with gravity")
+            if self.growth is not None:
+                raise ValueError("shear_rate does not combine with growth")
+            if resting is not None:
+                raise ValueError("shear_rate does not combine with resting")
+        # The stress tallies: the collisional virial sum r_a J_b (see _rules) and the
+        # time integrals of sum m u_a u_b over the flights, (xx, yy, xy) (see _drift).
+        self.virial_xx = 0.0
+        self.virial_yy = 0.0
+        self.virial_xy = 0.0
+        self.flight_stress = [0.0, 0.0, 0.0]
         # The box walls (0..3: x=0, x=width, y=0, y=height) each disk rests on.  An
         # inelastic model with tc > 0 holds a disk on a wall that gravity presses it
         # into once its next bounce would come within tc (and a disk that starts at
@@ -296,6 +367,32 @@ class ReferenceSimulation(CollisionRules):
         ys = (-2, -1, 0, 1, 2) if self.box.periodic[1] else (0,)
         return [(sx * self.box.width, sy * self.box.height) for sx in xs for sy in ys]
 
+    def _sheared_shifts(self):
+        """The images to try under shear: ``(dx, dy, du)``, the shift of the image's
+        position from its disk's now and of its x velocity.
+
+        Image ``(sx, sy)`` of disk ``j`` is at ``p_j + (sx Lx + sy delta, sy Ly)`` and
+        moves at ``v_j + (sy U, 0)``.  Along y nothing changes: ``sy`` from -2 to 2, as
+        in :meth:`_shifts`.  Along x, within the window of :meth:`_horizon` (``t <= h``)
+        a pair touching through image ``(sx, sy)`` at time ``t`` has
+        ``sx Lx + sy delta = (x_i - x_j) + (change of x_i - x_j) - sy U t - X`` with
+        ``|X| <= r_i + r_j``, where ``|x_i - x_j| < Lx`` (stored positions), the change
+        is at most ``Lx / 2`` (each disk moves at most a quarter length), ``|sy U t| <=
+        2 |U| h <= Lx / 2`` (the window is also at most ``Lx / (4 |U|)``) and
+        ``r_i + r_j < Lx`` (no disk overlaps its own image).  So ``|sx + c| < 3`` with
+        ``c = sy delta / Lx``: the six integers from ``floor(-c) - 2`` to
+        ``floor(-c) + 3`` hold every ``sx`` that can touch within the window.
+        """
+        w, h = self.box.width, self.box.height
+        delta = self.offset
+        speed = self.shear_rate * h  # U
+        shifts: list[tuple[float, float, float]] = []
+        for sy in (-2, -1, 0, 1, 2):
+            first = math.floor(-sy * delta / w) - 2
+            shifts.extend((sx * w + sy * delta, sy * h, sy * speed)
+                          for sx in range(first, first + 6))
+        return shifts
+
     def _horizon(self):
         """How far ahead next_event may look on a periodic box (inf if walled)."""
         lengths = [length for axis, length in enumerate((self.box.width, self.box.height))
@@ -309,9 +406,12 @@ class ReferenceSimulation(CollisionRules):
                 return INF
             half = 0.5 * min(lengths)
             return half / (vmax + math.sqrt(vmax * vmax + gabs * half))
-        if not lengths or vmax == 0.0:
-            return INF
-        return min(lengths) / (4.0 * vmax)
+        window = INF if not lengths or vmax == 0.0 else min(lengths) / (4.0 * vmax)
+        if self.shear_rate != 0.0:
+            # The images slide too: at most a quarter width at U in the window, which
+            # bounds the x shifts to try (see _sheared_shifts).
+            window = min(window, self.box.width / (4.0 * abs(self.shear_rate * self.box.height)))
+        return window
 
     def _accelerated(self):
         """Whether gravity is on and some disk feels it (a movable disk)."""
@@ -350,11 +450,16 @@ class ReferenceSimulation(CollisionRules):
             self.events.extend((self.time, "wake", d, -1) for d in self._woken)
             self._woken.clear()
         s = math.sqrt(self.thermostat[0] / self.m[k])
-        before = _dot(self.v[k], self.v[k])
+        # (The peculiar velocity: the velocity itself without shear.)
+        before = _dot(self._peculiar(k), self._peculiar(k))
         vx = s * self._gauss()
         vy = s * self._gauss()
+        if self.shear_rate != 0.0:
+            # A peculiar velocity drawn: the flow's velocity at the disk added.
+            vx += self.shear_rate * (self.p[k][1] - 0.5 * self.box.height)
         self.v[k] = [vx, vy]
-        self.thermostat_energy += 0.5 * self.m[k] * (vx * vx + vy * vy - before)
+        after = _dot(self._peculiar(k), self._peculiar(k))
+        self.thermostat_energy += 0.5 * self.m[k] * (after - before)
         self.resting[k].clear()
         self.redraws += 1
         self.events.append((self.time, "thermostat", k, -1))
@@ -368,11 +473,12 @@ class ReferenceSimulation(CollisionRules):
             ``(dt, kind, i, partner, detail)``: the time from now (``inf`` if
             nothing ever happens), the kind (``"disk"``, ``"wall"``, ``"box"``, or
             ``None``), the disk, its partner (a disk, a segment or a box side) and
-            what resolving the contact needs (a pair's periodic image shift; a
-            segment's part that is hit and its end points in that image; ``None``
-            for a box wall).
+            what resolving the contact needs (a pair's periodic image shift
+            ``(dx, dy)``, under shear ``(dx, dy, du)`` with the image's extra x
+            velocity; a segment's part that is hit and its end points in that image;
+            ``None`` for a box wall).
         """
-        shifts = self._shifts()
+        shifts = self._shifts() if self.shear_rate == 0.0 else self._sheared_shifts()
         if self._accelerated():
             acc = [self._acceleration(k) for k in range(len(self.p))]
             return _search.next_event_accelerated(self.p, self.v, self.r, acc, self.walls,
@@ -383,7 +489,9 @@ class ReferenceSimulation(CollisionRules):
 
     def _drift(self, dt):
         """Move every disk for ``dt``: along its straight line, or on its parabola under
-        gravity (movable disks; their velocities change by ``g dt``)."""
+        gravity (movable disks; their velocities change by ``g dt``), and add the
+        flight's integrals of the kinetic stress."""
+        self._flight_stress(dt)
         if not self._accelerated():
             self.p = [[p[0] + dt * v[0], p[1] + dt * v[1]] for p, v in zip(self.p, self.v)]
             self.time += dt
@@ -396,9 +504,39 @@ class ReferenceSimulation(CollisionRules):
         self.v = [[v[0] + dt * a[0], v[1] + dt * a[1]] for v, a in zip(self.v, acc)]
         self.time += dt
 
+    def _flight_stress(self, dt):
+        """Add to ``flight_stress`` the integrals over the next ``dt`` of ``sum m u_x^2``,
+        ``sum m u_y^2`` and ``sum m u_x u_y`` (movable disks, ``u`` the peculiar
+        velocity), exactly.
+
+        In flight ``u`` changes at a constant rate ``b``: ``(a_x - gamma v_y, a_y)``
+        with ``a`` the disk's acceleration (there is no gravity under shear, no shear
+        under gravity, so one of the two terms is zero and ``v_y`` is constant where
+        ``gamma`` is not).  With ``u(t) = u0 + b t`` the integral of ``u_a u_b`` over
+        ``[0, dt]`` is ``u0_a u0_b dt + (u0_a b_b + b_a u0_b) dt^2/2 + b_a b_b dt^3/3``.
+        """
+        if dt == 0.0:
+            return
+        h2, h3 = 0.5 * dt * dt, dt * dt * dt / 3.0
+        accelerated = self._accelerated()
+        for k in range(len(self.p)):
+            m = self.m[k]
+            if math.isinf(m):
+                continue
+            ux, uy = self._peculiar(k)
+            ax, ay = self._acceleration(k) if accelerated else (0.0, 0.0)
+            bx, by = ax - self.shear_rate * self.v[k][1], ay
+            for slot, (ua, ub, ba, bb) in enumerate(((ux, ux, bx, bx), (uy, uy, by, by),
+                                                      (ux, uy, bx, by))):
+                self.flight_stress[slot] += m * (ua * ub * dt + (ua * bb + ba * ub) * h2
+                                                 + ba * bb * h3)
+
     def _wrap(self):
         """Bring centres back into the box on periodic axes (after an event is resolved,
         so the image chosen by ``next_event`` still describes the contact)."""
+        if self.shear_rate != 0.0:
+            self._wrap_sheared()
+            return
         for p, images in zip(self.p, self.images):
             for axis, length in enumerate((self.box.width, self.box.height)):
                 if self.box.periodic[axis]:
@@ -406,6 +544,35 @@ class ReferenceSimulation(CollisionRules):
                     if wrapped != p[axis]:
                         images[axis] += round((p[axis] - wrapped) / length)
                     p[axis] = wrapped
+
+    def _wrap_sheared(self):
+        """:meth:`_wrap` under shear: a centre that left through the top (bottom) comes
+        back as its image below (above), then x is wrapped as usual.
+
+        Leaving through the top (``k = 1`` box lengths taken off y; ``k = -1`` through
+        the bottom): ``y -= k Ly``, ``x -= k delta(t)``, ``vx -= k U``, so that the
+        disk's image above is where the disk was, with its velocity.  The unwrapped x,
+        ``x + images_x Lx + images_y D(t)`` with ``D(t) = U (t - t0)`` not reduced,
+        must not jump: ``images_y`` gains ``k`` and ``x`` loses ``k delta``, so
+        ``images_x`` loses ``k`` times the whole widths ``(D - delta) / Lx`` in ``D``.
+        """
+        w, h = self.box.width, self.box.height
+        delta = self.offset
+        whole = round((self._displacement() - delta) / w)
+        speed = self.shear_rate * h  # U
+        for p, v, images in zip(self.p, self.v, self.images):
+            wrapped = p[1] % h
+            if wrapped != p[1]:
+                k = round((p[1] - wrapped) / h)
+                p[1] = wrapped
+                p[0] -= k * delta
+                v[0] -= k * speed
+                images[1] += k
+                images[0] -= k * whole
+            wrapped = p[0] % w
+            if wrapped != p[0]:
+                images[0] += round((p[0] - wrapped) / w)
+            p[0] = wrapped
 
     def advance(self, until: float | None = None,
                 collisions: int | None = None) -> ReferenceSimulation:
@@ -473,6 +640,10 @@ class ReferenceSimulation(CollisionRules):
                 impacts += 1
                 continue
             self._drift(dt)
+            if kind == "disk" and len(detail) == 3:
+                # A sheared image slid by du dt against its disk since the search: its
+                # shift at the contact, as the search's straight lines have it.
+                detail = (detail[0] + detail[2] * dt, detail[1], detail[2])
             self._resolve(kind, i, partner, detail)
             self._wrap()
             # The wakes the event caused come before it, the rests after it.
@@ -496,6 +667,74 @@ class ReferenceSimulation(CollisionRules):
     def velocities(self) -> np.ndarray:
         """The disk velocities now, a new ``(N, 2)`` array."""
         return np.array(self.v)
+
+    def _displacement(self) -> float:
+        """``D = shear_offset + shear_rate * height * (time - t0)``: the images' whole
+        displacement, not reduced by widths."""
+        return self.shear_offset + self.shear_rate * self.box.height * (self.time - self.t0)
+
+    @property
+    def offset(self) -> float:
+        """The offset ``delta`` of the images above along x now, in ``[0, width)``.
+
+        ``delta = D mod width`` with ``D = shear_offset + shear_rate * height * (time -
+        t0)`` the images' whole displacement (``shear_offset`` at ``t0``); 0 without
+        shear.
+        """
+        w = self.box.width
+        delta = self._displacement() % w
+        # (A tiny negative D rounds to w - D == w: the same images as 0.)
+        return 0.0 if delta == w else delta
+
+    @property
+    def unwrapped_positions(self) -> np.ndarray:
+        """The centres followed continuously through the periodic boundaries, a new
+        ``(N, 2)`` array.
+
+        ``(x + images_x width + images_y D, y + images_y height)`` with ``D =
+        shear_offset + shear_rate * height * (time - t0)`` (0 without shear), not
+        reduced by widths:
+        the path in the infinite sheared system, where the copy of the box ``k``
+        boxes up has slid by ``k D``.  A free disk's unwrapped x then moves at
+        ``vx + images_y U``, its velocity in that system.
+        """
+        w, h = self.box.width, self.box.height
+        slide = self._displacement() if self.shear_rate != 0.0 else 0.0
+        return np.array([[p[0] + k[0] * w + k[1] * slide, p[1] + k[1] * h]
+                         for p, k in zip(self.p, self.images)])
+
+    def _peculiar(self, k):
+        """Disk ``k``'s peculiar velocity: less the flow's ``(gamma (y - height/2), 0)``."""
+        v = self.v[k]
+        return (v[0] - self.shear_rate * (self.p[k][1] - 0.5 * self.box.height), v[1])
+
+    def peculiar_kinetic_energy(self) -> float:
+        """The kinetic energy of the movable disks' peculiar velocities.
+
+        Returns
+        -------
+        float
+            ``sum m |u|^2 / 2`` with ``u = (vx - shear_rate (y - height/2), vy)``: the
+            kinetic energy relative to the shear flow (:meth:`kinetic_energy` without
+            shear).
+        """
+        return sum(0.5 * self.m[k] * _dot(self._peculiar(k), self._peculiar(k))
+                   for k in range(len(self.p)) if not math.isinf(self.m[k]))
+
+    def kinetic_stress_integral(self) -> tuple[float, float, float]:
+        """The time integrals of the kinetic stress since the start, up to now.
+
+        Returns
+        -------
+        tuple of float
+            ``(xx, yy, xy)``: the integrals of ``sum m u_x^2``, ``sum m u_y^2`` and
+            ``sum m u_x u_y`` over the movable disks, ``u`` the peculiar velocity, each
+            flight integrated exactly (``u_x`` changes at ``-shear_rate * vy`` in flight).
+            With the virial (``virial_xx``, ...) gathered over the same time ``T`` they
+            give the mean pressure tensor, ``(I + virial) / (T area)``.
+        """
+        xx, yy, xy = self.flight_stress
+        return (xx, yy, xy)
 
     def kinetic_energy(self) -> float:
         """The kinetic energy of the movable disks.

@@ -4,7 +4,10 @@
 contact its search found, once the disks are moved to it: a pair's impulse with its
 coefficient of restitution and the TC model, a reflection at a box wall or a wall
 segment (side or end point), a heated wall's new velocity, a disk coming to rest on a
-box wall that gravity presses it into, and contacts of growing disks.
+box wall that gravity presses it into, and contacts of growing disks.  Under shear a
+pair may meet through a sliding image, whose velocity differs from its disk's; the
+impulse is the same, computed with the image's velocity, and every pair's impulse adds
+to the collisional virial.
 """
 
 from __future__ import annotations
@@ -24,7 +27,8 @@ class CollisionRules(RestingRules):
     ``v``, ``r``, ``m``, ``dr``, ``t_last``, ``resting`` and ``species``, the settings
     ``tc``, ``growth``, ``restitution``, ``wall_restitution``, ``gravity`` and
     ``wall_kt``, the clock ``time``, the tallies ``dissipated``, ``wall_heat``,
-    ``collisions`` and ``wall_collisions``, and the random draws ``_u`` and ``_gauss``
+    ``collisions``, ``wall_collisions`` and ``virial_xx``, ``virial_yy`` and
+    ``virial_xy``, and the random draws ``_u`` and ``_gauss``
     (one stream for the whole run, shared with the thermostat); and, where disks come
     to rest (``rest`` not ``None``), the state of :class:`RestingRules`, whose rules
     it calls after each contact.
@@ -50,6 +54,9 @@ class CollisionRules(RestingRules):
     wall_heat: list[float]
     collisions: int
     wall_collisions: int
+    virial_xx: float
+    virial_yy: float
+    virial_xy: float
     rest: Any
     _u: Callable[[], float]
     _gauss: Callable[[], float]
@@ -78,7 +85,11 @@ class CollisionRules(RestingRules):
 
     def _resolve(self, kind, i, partner, detail):
         """Resolve the contact ``next_event`` found (``kind``, disk ``i``, its
-        ``partner`` and the ``detail`` of the contact), the disks moved to its time."""
+        ``partner`` and the ``detail`` of the contact), the disks moved to its time.
+
+        A pair's detail is the shift of the image of ``j`` that ``i`` touches, from
+        ``j``: ``(dx, dy)``, or under shear ``(dx, dy, du)`` with the image moving at
+        ``v_j + (du, 0)`` (its shift at the contact's time)."""
         p, v = self.p[i], self.v[i]
         if kind == "disk":
             j = partner
@@ -104,18 +115,20 @@ class CollisionRules(RestingRules):
             # (The accelerations before the collision, which may release a disk that
             # slid on a box wall: see _part.)
             before = (self._acceleration(i), self._acceleration(j))
-            sx, sy = detail
+            sx, sy = detail[0], detail[1]
+            # The velocity of the image of j: j's own, or j's plus (du, 0) under shear.
+            vj = self.v[j] if len(detail) == 2 else (self.v[j][0] + detail[2], self.v[j][1])
             d = (p[0] - self.p[j][0] - sx, p[1] - self.p[j][1] - sy)
             norm = math.sqrt(_dot(d, d))
             n = (d[0] / norm, d[1] / norm)
-            vn = (v[0] - self.v[j][0]) * n[0] + (v[1] - self.v[j][1]) * n[1]
+            vn = (v[0] - vj[0]) * n[0] + (v[1] - vj[1]) * n[1]
             if self.growth is not None:
                 # The gap closes at dd - vn: the rate the collision reverses (vn' - dd =
                 # dd - vn); rounding may leave a contact not closing: nothing changes.
                 # (Closing as the contact time's quadratic has it, d.dv < s ds with s
                 # the contact distance: the same test, also for a pair that rounding
                 # left overlapping.)
-                dv = (v[0] - self.v[j][0], v[1] - self.v[j][1])
+                dv = (v[0] - vj[0], v[1] - vj[1])
                 s = self.r[i] + self.r[j]
                 vn = min((_dot(d, dv) - s * (self.dr[i] + self.dr[j])) / norm, 0.0)
             e = self._pair_restitution(i, j, vn)
@@ -135,6 +148,12 @@ class CollisionRules(RestingRules):
             self.v[j] = [self.v[j][0] + fj * vn * n[0], self.v[j][1] + fj * vn * n[1]]
             # The kinetic energy of the relative normal motion, mu vn^2 / 2, times 1 - e^2.
             self.dissipated += 0.5 * (1.0 - e * e) * mu * vn * vn
+            # The impulse on i, J = -(1+e) mu vn n (m_i fi = (1+e) mu), and the virial
+            # r_a J_b with r = d, from the image of j to i.
+            jx, jy = -k * mu * vn * n[0], -k * mu * vn * n[1]
+            self.virial_xx += d[0] * jx
+            self.virial_yy += d[1] * jy
+            self.virial_xy += d[0] * jy
             for disk in (i, j):
                 self._note(disk)
                 self._release(disk)

@@ -51,23 +51,31 @@ def next_event(positions, velocities, radii, growth_speeds, walls, box, shifts):
     """The earliest contact in straight flight, as ``ReferenceSimulation.next_event``.
 
     ``growth_speeds`` are the speeds at which the radii grow, or ``None`` without
-    growth; ``shifts`` the periodic image shifts to try for each pair and wall.
+    growth; ``shifts`` the periodic image shifts to try for each pair and wall:
+    ``(dx, dy)``, the image's position less its disk's, or under shear (no walls)
+    ``(dx, dy, du)``, the image also moving at ``du`` more along x.  A pair's
+    contact through an image comes from their relative position ``p_i - (p_j + shift)``
+    and velocity ``v_i - (v_j + (du, 0))``; its detail is the shift.
     """
     best: Event = (INF, None, -1, -1, None)
     n = len(positions)
     for i in range(n):
         for j in range(i + 1, n):
             dv = (velocities[i][0] - velocities[j][0], velocities[i][1] - velocities[j][1])
-            for sx, sy in shifts:
+            for shift in shifts:
+                sx, sy = shift[0], shift[1]
                 dp = (positions[i][0] - positions[j][0] - sx,
                       positions[i][1] - positions[j][1] - sy)
+                rel = dv
+                if len(shift) == 3:  # a sheared image: its velocity is v_j + (du, 0)
+                    rel = (velocities[i][0] - (velocities[j][0] + shift[2]), dv[1])
                 if growth_speeds is None:
-                    t = circle_contact_time(dp, dv, radii[i] + radii[j])
+                    t = circle_contact_time(dp, rel, radii[i] + radii[j])
                 else:
-                    t = circle_contact_time_growing(dp, dv, radii[i] + radii[j],
+                    t = circle_contact_time_growing(dp, rel, radii[i] + radii[j],
                                                     growth_speeds[i] + growth_speeds[j])
                 if t < best[0]:
-                    best = (t, "disk", i, j, (sx, sy))
+                    best = (t, "disk", i, j, shift)
         for k, wall in enumerate(walls):
             for sx, sy in shifts:
                 a = (wall.start[0] + sx, wall.start[1] + sy)

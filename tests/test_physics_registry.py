@@ -132,7 +132,7 @@ def test_the_built_in_families_and_their_keywords():
     assert [kw for kw in physics.KEYWORDS] == ["restitution", "wall_restitution", "tc",
                                                "gravity", "wall_temperatures",
                                                "thermostat", "growth", "resting",
-                                               "rest_height", "shear_rate"]
+                                               "rest_height", "shear_rate", "shear_offset"]
     assert not physics.Resting.built_in  # (a family of the registry, checked always)
     assert physics.Resting.always
     for name in ("restitution", "wall_restitution", "tc", "gravity", "thermostat",

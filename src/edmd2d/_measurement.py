@@ -116,6 +116,18 @@ class Measurement:
         reach (those touched since the simulation was created): their normal impulse
         in the window over their total length, per unit time.  The mechanical pressure
         on a container of segments.  ``nan`` if no side was ever touched.
+    shear_rate : float
+        The shear rate of a sheared box (:class:`edmd2d.physics.Shear`); 0.0 without
+        shear.  Under shear the temperatures come from the peculiar velocities
+        (relative to the flow), and the kinetic part of the pressure tensor is the
+        exact time integral over the window of ``sum m u_a u_b`` (``u`` the peculiar
+        velocity) rather than the mean of the block boundaries; ``pressure`` is half
+        the tensor's trace.
+    viscosity, viscosity_error : float
+        Under shear, the shear viscosity ``eta = -pressure_xy / shear_rate`` and its
+        error (``nan`` without shear).  In 2D it depends on the system size and on
+        the shear rate (the long-time tail of the stress autocorrelation): quote them
+        with it.
     """
 
     duration: float
@@ -154,6 +166,9 @@ class Measurement:
     pressure_xy: float = math.nan
     pressure_tensor_error: np.ndarray = field(
         default_factory=lambda: _frozen(np.full((2, 2), math.nan)))
+    shear_rate: float = 0.0
+    viscosity: float = math.nan
+    viscosity_error: float = math.nan
 
     @property
     def pressure_tensor(self) -> np.ndarray:
@@ -203,6 +218,9 @@ class Measurement:
             f"mean free time         {pm(self.mean_free_time, self.mean_free_time_error)}",
             f"mean free path         {self.mean_free_path:.6g}",
         ]
+        if self.shear_rate != 0.0:
+            lines.append(f"shear rate             {self.shear_rate:.6g}")
+            lines.append(f"viscosity              {pm(self.viscosity, self.viscosity_error)}")
         if np.isfinite(self.wall_pressure) and (box_hits > 0 or segment_hits == 0):
             label = "box wall pressure" if segment_hits else "wall pressure"
             lines.append(f"{label:<23}{pm(self.wall_pressure, self.wall_pressure_error)}")

@@ -178,8 +178,8 @@ class EngineState:
         self.growth = None if growth is None else np.array([growth.rate, self.time])
         # Lees-Edwards boundaries (the registered family "shear"): the clock of the
         # images' offset and the integrals of the kinetic stress (see
-        # _engine/sheared.py), started at offset 0 once the grid is built.
-        self.shear = families.get("shear")
+        # _engine/sheared.py), started once the grid is built.
+        self.families = families
         if self.shear is not None and growth is not None:
             with about("shear_rate"):
                 raise ValueError("shear_rate does not combine with growth")
@@ -263,7 +263,7 @@ class EngineState:
         state.setdefault("rest_frozen", None)
         state.setdefault("rest_t_static", None)
         state.setdefault("wall_open", np.zeros(len(state["walls"]), bool))
-        for name in ("shear", "shear_clock", "shear_slides", "shear_flights"):
+        for name in ("shear_clock", "shear_slides", "shear_flights"):
             state.setdefault(name, None)  # (saved before boxes could be sheared)
         state["log_capacity"] = 0  # (a copy does not stream)
         acc = state["acc"]
@@ -307,11 +307,12 @@ class EngineState:
                         f"a sheared box must be at least 4 largest diameters wide and 3 "
                         f"high, got {width:g} x {height:g} for diameter {dmax:g}")
         periodic = self.box.periodic
-        old_ncx = int(self.gi[0]) if hasattr(self, "gi") else 0
+        old_ncx = int(vars(self)["gi"][0]) if "gi" in vars(self) else 0
         self.gi = np.array([ncx, ncy, int(periodic[0]), int(periodic[1])], np.int64)
         self.gf = np.array([width, height, width / ncx, height / ncy], np.float64)
         if self.shear is not None and ncx != old_ncx:
-            self.start_shear(0.0 if self.shear_clock is None else self.shear_offsets()[1])
+            self.start_shear(self.shear.offset if self.shear_clock is None
+                             else self.shear_offsets()[1])
         self.head = np.empty(ncx * ncy, np.int32)
         _grid.build_cells(pos, self.gi, self.gf, self.E[:, _layout.CELL], self.head,
                           self.nxt, self.prv)
@@ -330,13 +331,34 @@ class EngineState:
                 start = np.zeros(ncx * ncy + 1, np.int32)
             self.wstart, self.wwall, self.wsx, self.wsy = start, closed[wall], sx, sy
 
+    def first_overlap_across(self, pos: np.ndarray, rad: np.ndarray) -> tuple:
+        """Under shear: the first pair ``(i, j, distance)`` of a disk of the bottom row
+        of cells and one of the top row's images below it (at ``x - offset``) that
+        overlap (``(-1, -1, 0.0)``: none), every such pair examined."""
+        ncx = int(self.gi[0])
+        row = self.E[:, _layout.CELL] // ncx
+        low = np.flatnonzero(row == 0)
+        high = np.flatnonzero(row == int(self.gi[1]) - 1)
+        width = self.box.width
+        dx = pos[low, None, 0] - (pos[None, high, 0] - self.shear_offsets()[0])
+        dx -= width * np.floor(dx / width + 0.5)
+        dy = pos[low, None, 1] - (pos[None, high, 1] - self.box.height)
+        dist = np.hypot(dx, dy)
+        bad = np.argwhere(dist < (rad[low, None] + rad[None, high]) * (1.0 - OVERLAP_TOL))
+        if len(bad) == 0:
+            return -1, -1, 0.0
+        a, b = bad[0]
+        return int(low[a]), int(high[b]), float(dist[a, b])
+
     def check_overlaps(self, pos: np.ndarray, rad: np.ndarray) -> None:
         """Refuse disks (at ``pos``, in row order, on the grid) that overlap each
         other, their periodic images or a wall segment."""
         i, j, dist = _overlap.first_disk_overlap(
             pos, rad, self.gi, self.gf, self.E[:, _layout.CELL], self.head, self.nxt,
-            OVERLAP_TOL,
+            OVERLAP_TOL, self.shear is None,
         )
+        if i < 0 and self.shear is not None:
+            i, j, dist = self.first_overlap_across(pos, rad)
         if i >= 0:
             what = "its own periodic image" if i == j else f"disk {j}"
             contact = rad[i] + rad[j]
@@ -841,11 +863,18 @@ class EngineState:
                                 _layout.support_view(self.S)))
 
     # ------------------------------------------------------------------ shear
+    @property
+    def shear(self):
+        """The family of Lees-Edwards boundaries (``physics.Shear``), or ``None``."""
+        return self.families.get("shear")
+
     def start_shear(self, unreduced: float) -> None:
         """Start the clock of the images' offset at :attr:`time`, where the offset not
         reduced by box widths is ``unreduced`` (0 when the shear starts): the slides
         since it was 0 (whole cell widths, rounded towards the direction of flow),
-        when the next is due, and the offset at the last (see _engine/sheared.py)."""
+        when the next is due, and the offset at the last (see _engine/sheared.py).
+        (An offset at a cell's edge counts as the start of the cell the images slide
+        into.)"""
         assert self.shear is not None
         w = float(self.gf[2])
         ncx = int(self.gi[0])
@@ -878,6 +907,8 @@ class EngineState:
         """The engine's shear family: ``None`` or a ``layout.Shear``."""
         if self.shear is None:
             return None
+        assert (self.shear_clock is not None and self.shear_slides is not None
+                and self.shear_flights is not None)  # (started with the grid)
         n = len(self.S)
         return _layout.Shear(self.shear.rate, self.shear.rate * self.box.height,
                              0.5 * self.box.height, self.shear_clock, self.shear_slides,

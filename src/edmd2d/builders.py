@@ -124,7 +124,10 @@ def make_gas(
         several: concatenate the lists).  The disks they cross are left out.
     **physics
         The keywords of physics families registered with
-        :func:`edmd2d.physics.register`, as for :class:`~edmd2d.Simulation`.
+        :func:`edmd2d.physics.register`, as for :class:`~edmd2d.Simulation`.  With
+        ``shear_rate`` (:class:`edmd2d.physics.Shear`) the velocities drawn are the
+        peculiar ones, and the flow ``(shear_rate (y - height / 2), 0)`` is added to
+        them: the gas starts in its linear velocity profile.
 
     Returns
     -------
@@ -204,6 +207,10 @@ def make_gas(
         mass = mass[shuffle]
     pos, rad, mass = _leave_out_crossed(pos, rad, mass, segs, box, "make_gas", "lattice")
     vel = _maxwell_boltzmann(rng, mass, temperature, 0 if segs else sum(box.periodic))
+    rate = physics.get("shear_rate")
+    if isinstance(rate, (int, float)) and not isinstance(rate, bool) and math.isfinite(rate):
+        # (Sheared: the draw is the peculiar velocity, the flow is added to it.)
+        vel[:, 0] += rate * (pos[:, 1] - 0.5 * box.height)
     return Simulation(pos, vel, rad, mass, box=box, gravity=gravity, restitution=restitution,
                       wall_restitution=wall_restitution, tc=tc,
                       wall_temperatures=wall_temperatures, thermostat=thermostat, seed=rng,

@@ -101,7 +101,7 @@ def kinetic_temperature(sim: Simulation) -> float:
     if dof <= 0:
         return math.nan
     mass = sim.masses
-    vel = sim.velocities
+    vel = sim.peculiar_velocities
     movable = np.isfinite(mass)
     m, v = mass[movable], vel[movable]
     twice_ke = float(dot(m, np.einsum("ij,ij->i", v, v)))
@@ -464,7 +464,7 @@ def _edge(sim, movable: np.ndarray) -> dict:
     simulation was created, so that a window needs nothing from between boundaries),
     the temperatures, the mean speed and the counts."""
     counts = sim.counts
-    return {
+    edge = {
         "time": sim.time,
         "acc": sim._accumulators(),
         "temperature": kinetic_temperature(sim),
@@ -474,6 +474,12 @@ def _edge(sim, movable: np.ndarray) -> dict:
         "collisions": counts.collisions,
         "wall_collisions": counts.wall_collisions,
     }
+    shear = sim.families.get("shear")
+    if shear is not None:
+        # (Sheared: the kinetic stress integrated exactly over every flight.)
+        edge["flights"] = sim._state.kinetic_stress_integral()
+        edge["shear_rate"] = shear.rate
+    return edge
 
 
 def _from_edges(edges: list, tau, duration: float, *, n: int, n_all: int, dof: int,
@@ -557,6 +563,23 @@ def _from_edges(edges: list, tau, duration: float, *, n: int, n_all: int, dof: i
             seg_p_err = _stderr(seg_side[:, touched].sum(axis=1) / (tau * touched_length))
         else:
             seg_p, seg_p_err = math.nan, math.nan
+        sheared: dict = {}
+        if all("flights" in e for e in edges):
+            # Sheared: the kinetic part is the time integral of sum m u_a u_b over the
+            # window (peculiar velocities u), exact, instead of the boundaries' samples.
+            flights = np.diff(np.array([e["flights"] for e in edges]), axis=0)  # (B, 3)
+            kin = flights[:, [[0, 2], [2, 1]]]  # (B, 2, 2)
+            p_tensor_block = (kin + virial_tensor) / (tau3 * area)
+            p_tensor = (kin.sum(axis=0) + virial_tensor.sum(axis=0)) / (duration * area)
+            p_axes = np.diag(p_tensor)
+            p_xy = float(p_tensor[0, 1])
+            p_block = 0.5 * (p_tensor_block[:, 0, 0] + p_tensor_block[:, 1, 1])
+            pressure = 0.5 * float(p_axes.sum())
+            z = pressure * area / (n * kt) if kt > 0 else math.nan
+            z_block = p_block * area / (n * kt_block) if kt > 0 else np.full(blocks, math.nan)
+            rate_shear = float(edges[-1]["shear_rate"])
+            sheared = {"shear_rate": rate_shear, "viscosity": -p_xy / rate_shear,
+                       "viscosity_error": _stderr(p_tensor_block[:, 0, 1]) / abs(rate_shear)}
     mean_speed = float(np.mean(speeds))
     return Measurement(
         duration=float(duration),
@@ -594,6 +617,7 @@ def _from_edges(edges: list, tau, duration: float, *, n: int, n_all: int, dof: i
         temperature_error=_stderr(kt_block),
         pressure_xy=p_xy,
         pressure_tensor_error=_frozen(_stderr(p_tensor_block)),
+        **sheared,
     )
 
 
@@ -601,7 +625,7 @@ def _axis_temperatures(sim, movable: np.ndarray) -> np.ndarray:
     """``kT_x, kT_y``: the kinetic temperature of each velocity component alone."""
     _, conserved = degrees_of_freedom(sim)
     m = sim.masses[movable]
-    v = sim.velocities[movable]
+    v = sim.peculiar_velocities[movable]
     out = np.full(2, math.nan)
     for a in range(2):
         dof = len(m) - int(conserved[a])
@@ -618,7 +642,7 @@ def _cross_temperature(sim, movable: np.ndarray) -> float:
     conserves both momentum components), the kinetic part of ``P_xy A / N``."""
     _, conserved = degrees_of_freedom(sim)
     m = sim.masses[movable]
-    v = sim.velocities[movable]
+    v = sim.peculiar_velocities[movable]
     both = bool(conserved[0] and conserved[1])
     dof = len(m) - int(both)
     if dof <= 0:
@@ -628,7 +652,7 @@ def _cross_temperature(sim, movable: np.ndarray) -> float:
 
 
 def _mean_speed(sim, movable: np.ndarray) -> float:
-    v = sim.velocities[movable]
+    v = sim.peculiar_velocities[movable]
     return float(np.mean(np.hypot(v[:, 0], v[:, 1]))) if len(v) else math.nan
 
 

@@ -894,8 +894,9 @@ class Shear(Family):
     to it is its *peculiar* velocity, which a disk keeps when it leaves through the top
     or the bottom (its x velocity changes by ``-+ rate * height`` and its x by the
     images' offset).  The thermostat draws peculiar velocities.  The offset of the
-    images above is 0 when the shear starts (the simulation's ``time``) and grows as
-    ``rate * height * t``, taken modulo the width.
+    images above is ``offset`` at the simulation's ``time`` (0 by default) and grows
+    at ``rate * height``, taken modulo the width (:attr:`Simulation.shear_offset
+    <edmd2d.Simulation.shear_offset>`).
 
     Shear needs a box periodic on both axes, at least four largest diameters wide and
     three high (the grid's cells along the boundary; a box too small is refused), and
@@ -906,20 +907,26 @@ class Shear(Family):
     ----------
     rate : float
         The shear rate (either sign; ``0``: no shear).
+    offset : float
+        The offset of the images above at the simulation's ``time``, in ``[0,
+        width)``.
     """
 
     name: ClassVar[str] = "shear"
     keywords: ClassVar[tuple[Keyword, ...]] = (
         Keyword("shear_rate", None, "rate",
                 "the shear rate of Lees-Edwards boundaries (default: none)"),
+        Keyword("shear_offset", None, "",
+                "the offset of the images above at the start (default 0)"),
     )
 
     rate: float
+    offset: float = 0.0
 
     @classmethod
     def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
-            cls, system: System | None = None, *,
-            shear_rate: float | None = None) -> Shear | None:
+            cls, system: System | None = None, *, shear_rate: float | None = None,
+            shear_offset: float | None = None) -> Shear | None:
         """``None`` (no shear, also for 0) or Lees-Edwards boundaries at ``shear_rate``.
 
         Parameters
@@ -927,6 +934,9 @@ class Shear(Family):
         system : System
             Its box, segments, gravity and masses.
         shear_rate : float, optional
+        shear_offset : float, optional
+            The offset of the images above at the start, any finite number (taken
+            modulo the box width); default 0.
 
         Returns
         -------
@@ -935,10 +945,17 @@ class Shear(Family):
         Raises
         ------
         ValueError
-            For a rate that is not a finite number, or a system that shear does not
-            combine with.
+            For a rate or offset that is not a finite number, an offset without a
+            rate, or a system that shear does not combine with.
         """
         assert system is not None  # (checked with the system, which it needs)
+        offset = 0.0
+        if shear_offset is not None:
+            with about("shear_offset"):
+                offset = float(as_float_array("shear_offset", shear_offset, ()))
+                if shear_rate is None:
+                    raise ValueError("shear_offset needs a shear_rate")
+                offset %= system.box.width
         if shear_rate is None:
             return None
         with about("shear_rate"):
@@ -956,7 +973,17 @@ class Shear(Family):
             if np.isinf(system.masses).any():
                 raise ValueError("shear_rate does not combine with immovable disks "
                                  "(infinite masses)")
-        return cls(rate)
+        return cls(rate, offset)
+
+    def log(self) -> dict:
+        """The rate, as ``shear_rate`` (the offset at a frame's time is its box's tilt,
+        which :mod:`edmd2d.io.gsd` writes).
+
+        Returns
+        -------
+        dict of str to ndarray
+        """
+        return {"shear_rate": np.array([self.rate], np.float64)}
 
 
 for _family in (Restitution, Gravity, HeatedWalls, Thermostat, Growth, Resting, Shear):

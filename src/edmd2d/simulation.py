@@ -329,6 +329,29 @@ class Simulation(SimulationBase):
         return self._state.to_user(self._state.velocities())
 
     @property
+    def peculiar_velocities(self) -> np.ndarray:
+        """Disk velocities at :attr:`time` relative to the flow of a sheared box,
+        ``v - (rate (y - height / 2), 0)`` (see :class:`edmd2d.physics.Shear`), shape
+        (N, 2), a copy; :attr:`velocities` without shear.  Temperatures and the kinetic
+        part of the pressure are taken from them."""
+        vel = self._state.velocities()
+        shear = self._state.shear
+        if shear is not None:
+            y = self._state.positions()[:, 1]
+            vel[:, 0] -= shear.rate * (y - 0.5 * self.box.height)
+        return self._state.to_user(vel)
+
+    @property
+    def shear_offset(self) -> float:
+        """How far the images above a sheared box are shifted along x at :attr:`time`,
+        in ``[0, width)`` (0.0 without shear; see :class:`edmd2d.physics.Shear`): the
+        image of a disk at ``(x, y)`` one box above is at ``(x + shear_offset, y +
+        height)``, moving ``rate * height`` faster along x."""
+        if self._state.shear is None:
+            return 0.0
+        return self._state.shear_offsets()[0] % self.box.width
+
+    @property
     def radii(self) -> np.ndarray:
         """Disk radii at :attr:`time`, shape (N,), a copy (they change in time under
         :attr:`growth`)."""

@@ -9,10 +9,12 @@ from .grid import neighbour
 
 
 @njit
-def first_disk_overlap(pos, rad, gi, gf, cell, head, nxt, tol):
+def first_disk_overlap(pos, rad, gi, gf, cell, head, nxt, tol, across):
     """The first pair ``(i, j)`` whose centre distance is below ``(r_i + r_j)(1 - tol)``.
 
-    Returns ``(-1, -1, 0.0)`` if there is none, else ``(i, j, distance)``.
+    Returns ``(-1, -1, 0.0)`` if there is none, else ``(i, j, distance)``.  Without
+    ``across`` the pairs through the boundary along y are left out (a sheared box,
+    whose images there slide: checked by the caller).
     """
     ncx = gi[0]
     ncy = gi[1]
@@ -26,7 +28,7 @@ def first_disk_overlap(pos, rad, gi, gf, cell, head, nxt, tol):
                 continue
             for oy in range(-1, 2):
                 nyc, sy = neighbour(cy, oy, ncy, gi[3] != 0)
-                if nyc < 0:
+                if nyc < 0 or (sy != 0 and not across):
                     continue
                 j = head[nxc + ncx * nyc]
                 while j >= 0:

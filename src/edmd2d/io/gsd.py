@@ -10,7 +10,13 @@ Uses the ``gsd`` package, a dependency of edmd2d.
 What a frame holds (HOOMD conventions):
 
 - ``configuration.box = [W, H, 0, 0, 0, 0]`` and ``configuration.dimensions = 2``;
-  ``configuration.step``: the number of events processed so far.
+  ``configuration.step``: the number of events processed so far.  A sheared box
+  (:class:`edmd2d.physics.Shear`) is written as HOOMD's triclinic box with the tilt
+  ``xy = offset / H``, the images' offset (:attr:`Simulation.shear_offset
+  <edmd2d.Simulation.shear_offset>`) taken between ``-W/2`` and ``W/2``: the images
+  one box above sit ``xy H`` to the right, as Lees-Edwards boundaries place them, and
+  OVITO and freud see the same neighbours across the sliding boundary.  The centres
+  are then wrapped into that parallelogram, and ``image`` counts its sides.
 - ``particles.position``: the centres at the frame's time, shifted so that the box is
   centred at the origin (``x - W/2``, ``y - H/2``, ``z = 0``), wrapped into the box;
   ``particles.image``: the periodic images crossed, so that ``position + image * L``
@@ -148,13 +154,21 @@ def _frame(sim, writer: Writer):
     centre = np.array([width / 2.0, height / 2.0])
     pos = sim.positions - centre
     unwrapped = sim.unwrapped_positions - centre
+    # A sheared box is the parallelogram whose second side is (offset, height): its
+    # tilt, taken between -width/2 and width/2, and the centres wrapped into it.
+    tilt = sim.shear_offset
+    if tilt >= 0.5 * width:
+        tilt -= width
+    if tilt != 0.0:
+        pos[:, 0] -= width * np.floor((pos[:, 0] - tilt / height * pos[:, 1]) / width + 0.5)
     image = np.zeros((len(sim), 3), np.int32)
-    for axis, length in enumerate(box.size):
-        if box.periodic[axis]:
-            image[:, axis] = np.round((unwrapped[:, axis] - pos[:, axis]) / length)
+    if box.periodic[1]:
+        image[:, 1] = np.round((unwrapped[:, 1] - pos[:, 1]) / height)
+    if box.periodic[0]:
+        image[:, 0] = np.round((unwrapped[:, 0] - pos[:, 0] - image[:, 1] * tilt) / width)
     species = sim.species
     frame = hoomd.Frame()
-    frame.configuration.box = [width, height, 0.0, 0.0, 0.0, 0.0]
+    frame.configuration.box = [width, height, 0.0, tilt / height, 0.0, 0.0]
     frame.configuration.dimensions = 2
     frame.configuration.step = sim.counts.events
     p = frame.particles
@@ -278,8 +292,12 @@ def read(path: str | os.PathLike[str], frame: int = -1, *, radius_scale: float =
     if "edmd2d/box" in log:
         lx, ly = (float(v) for v in log["edmd2d/box"])
     if xy != 0.0:
-        raise ValueError(f"frame {frame} of {path} has a tilted box (xy = {xy}); "
-                         "edmd2d boxes are rectangles")
+        if "edmd2d/shear/shear_rate" not in log:
+            raise ValueError(f"frame {frame} of {path} has a tilted box (xy = {xy}) and "
+                             "no shear rate: edmd2d boxes are rectangles, or sheared")
+        # (Sheared: the tilt is the images' offset; the centres, wrapped into the
+        # parallelogram, are wrapped back into the rectangle below.)
+        physics.setdefault("shear_offset", xy * ly)
     px, py = log.get("edmd2d/periodic", np.array([1, 1]))
     periodic = (bool(px), bool(py))
     box = Box(lx, ly, periodic=periodic)

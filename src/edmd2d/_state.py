@@ -27,6 +27,7 @@ from ._engine import overlap as _overlap
 from ._engine import queue as _queue
 from ._engine import response as _response
 from ._engine import resting as _resting
+from ._engine import sheared as _sheared
 from ._sums import dot
 from ._validate import about, as_generator, indices_where
 from .geometry import BOX_WALL_EQUATIONS, MAX_LENGTH
@@ -304,8 +305,9 @@ class EngineState:
             if min(width / ncx, height / ncy) < side_min:
                 with about("shear_rate"):
                     raise ValueError(
-                        f"a sheared box must be at least 4 largest diameters wide and 3 "
-                        f"high, got {width:g} x {height:g} for diameter {dmax:g}")
+                        f"a sheared box must be more than 4 largest diameters wide and "
+                        f"more than 3 high, got {width:g} x {height:g} for diameter "
+                        f"{dmax:g}")
         periodic = self.box.periodic
         old_ncx = int(vars(self)["gi"][0]) if "gi" in vars(self) else 0
         self.gi = np.array([ncx, ncy, int(periodic[0]), int(periodic[1])], np.int64)
@@ -478,7 +480,11 @@ class EngineState:
         self.predict_all()
 
     def sync_all(self) -> None:
-        """Move every stored position to the current time (local clocks all equal)."""
+        """Move every stored position to the current time (local clocks all equal);
+        under shear, the flights up to now join the integrals of the kinetic stress
+        first, as the engine adds each flight when it moves a disk."""
+        if self.shear_flights is not None:
+            self.shear_flights[:] = self.kinetic_stress_integral()
         _flight.drift_all(self.time, self.S, self.gravity_bundle())
 
     # ------------------------------------------------------------------ readouts
@@ -883,12 +889,10 @@ class EngineState:
         m = math.floor(cells)
         if speed < 0.0 and m == cells:
             m -= 1  # (moving down from exactly a cell's edge: in the cell below it)
-        k = m % ncx
         reduced = unreduced - self.box.width * (m // ncx)  # (within [k w, (k + 1) w])
-        edge = (k + 1) * w if speed > 0.0 else k * w  # where the next slide is due
         self.shear_slides = np.array([m], np.int64)
-        self.shear_clock = np.array([self.time, self.time + (edge - reduced) / speed,
-                                     reduced])
+        self.shear_clock = np.array([self.time, 0.0, reduced, self.time, unreduced])
+        self.shear_clock[1] = _sheared.next_slide(m, speed > 0.0, w, self.shear_clock, speed)
         if self.shear_flights is None:
             self.shear_flights = np.zeros(3)
 
@@ -1031,6 +1035,11 @@ class EngineState:
                 bar.close()
         if status in (_layout.REACHED_TIME, _layout.NO_EVENTS) and until_given:
             self.time = t_end
+            if status == _layout.NO_EVENTS and self.shear is not None:
+                # (Slides were not processed up to t_end: restart the offset's clock
+                # there, and the predictions of its columns.)
+                self.start_shear(self.shear_offsets()[1])
+                self.predict_all()
             return
         if status == _layout.REACHED_COLLISIONS:
             return

@@ -504,8 +504,9 @@ class Shear(NamedTuple):
     speed: float
     #: ``height / 2``: where the flow's velocity is zero.
     half: float
-    #: float64, shape (3,): the time of the last slide, of the next, and the offset at
-    #: the last (``sheared.T_BASE``, ``T_NEXT``, ``DELTA_BASE``).
+    #: float64, shape (5,): the time of the last slide, of the next, the offset at the
+    #: last, and the time and unreduced offset where the shear started
+    #: (``sheared.T_BASE``, ``T_NEXT``, ``DELTA_BASE``, ``T_ORIGIN``, ``D_ORIGIN``).
     clock: np.ndarray
     #: int64, shape (1,): slides since the offset was 0 (negative for ``rate < 0``).
     slides: np.ndarray

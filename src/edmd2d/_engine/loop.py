@@ -255,6 +255,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
     direction = -1
     stale = False
     sliding = False
+    idle = 0  # (slides in a row with no event of a disk ahead)
     mark = -1
     t_redo0 = INF
     t_redo1 = INF
@@ -280,6 +281,17 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     if n_ev >= max_events:
                         status = REACHED_EVENT_LIMIT
                         break
+                    if thermostat is None and (i < 0 or qt[i] == INF):
+                        # No disk has an event: all are at rest (a moving disk
+                        # crosses cells).  Their images slide past at U alone, so
+                        # within one slide past the whole width every pair that ever
+                        # meets is predicted; after that nothing ever happens.
+                        idle += 1
+                        if idle > ncx + 2:
+                            status = NO_EVENTS
+                            break
+                    else:
+                        idle = 0
                     sliding = True
                     t = t_slide
             if uniforms is not None and not sliding:

@@ -20,13 +20,25 @@ the offset grows (or shrinks) by a cell width: at that instant, a *slide*, every
 of the two edge rows is predicted afresh (:func:`slide`), the only event the sliding
 adds.  The offset is kept as ``delta_base + U (t - t_base)`` from the last slide, so
 it is computed from a time difference shorter than ``w / |U|``, to full precision at
-any time of a long run.  Across the boundary the image along x is the nearest one,
-unique because the box is at least four cells wide (``x`` differences of touching
-disks are below a cell width).
+any time of a long run; and each slide's time is computed afresh from a fixed origin,
+``t_origin + (m w - D_origin) / U`` for the ``m``-th cell edge of the unreduced offset
+``D``, so that the rounding of the clock does not pile up over millions of slides.
+
+Which image along x: a scanned column ``c`` (taken modulo ``ncx``) stands for its own
+image, shifted by whole widths as ``c`` leaves ``0 .. ncx - 1``, plus ``sy delta``:
+within the four columns there is one image of each disk, and that is the one that
+can reach the disk's neighbourhood before the next slide.  (The nearest image at the
+time of the prediction is not always that one: the two disks may each move a cell and
+the images slide a cell before they touch, three cells in all, more than half of a box
+four or five cells wide.)  At contact the x separation is below a cell width, so the
+collision takes the nearest image (:func:`separation`), unique in a box at least four
+cells wide.
 
 The bundle (``layout.Shear``) holds ``rate``, ``speed = U``, ``half = height / 2``;
-``clock = (t_base, t_next, delta_base)``, the time of the last slide, of the next, and
-the offset at the last; ``slides[0] = m``, the slides since the offset was 0, whose
+``clock = (t_base, t_next, delta_base, t_origin, D_origin)``, the time of the last
+slide, of the next, the offset at the last, and the time and unreduced offset where
+the shear started; ``slides[0] = m``, the cell edges of ``D`` passed (from 0: ``m =
+floor(D / w)`` while ``D`` grows, one less at an edge while it shrinks), whose
 remainder ``m mod ncx`` is ``k``; room for the disks of a slide (``rows``) and
 their predicted times (``times``); and ``flights``, the exact time integrals
 over every free flight of ``sum m u_x^2``, ``sum m u_y^2`` and ``sum m u_x u_y`` (the
@@ -46,6 +58,8 @@ from .predict import pair_time
 T_BASE = 0
 T_NEXT = 1
 DELTA_BASE = 2
+T_ORIGIN = 3
+D_ORIGIN = 4
 # flights entries
 F_XX = 0
 F_YY = 1
@@ -94,17 +108,19 @@ def scan_across(i, t, x, y, vx, vy, r, cx, cy, oy0, oy1, S, stamp, gi, gf, head,
         else:
             continue
         # Images above sit k + f cells to the right: columns cx - k - 2 .. cx - k + 1;
-        # below, k + f to the left: cx + k - 1 .. cx + k + 2.
+        # below, k + f to the left: cx + k - 1 .. cx + k + 2.  Each column's image: the
+        # whole widths by which it lies outside 0 .. ncx - 1, plus sy delta.
         first = cx - k - 2 if sy > 0 else cx + k - 1
         for q in range(4):
             col = (first + q) % ncx
             if col < 0:
                 col += ncx
+            shift = ((first + q - col) // ncx) * gf[0] + sy * d
             j = head[col + ncx * ny]
             while j >= 0:
                 if j != i:
                     dt = t - S[j, T]
-                    dx = nearest_x(x - (S[j, X] + dt * S[j, VX] + sy * d), gf[0])
+                    dx = x - (S[j, X] + dt * S[j, VX] + shift)
                     dy = y - (S[j, Y] + dt * S[j, VY] + sy * gf[1])
                     dtc = pair_time(dx, dy, vx - (S[j, VX] + sy * shear.speed),
                                     vy - S[j, VY], r + S[j, R])
@@ -155,6 +171,15 @@ def wrap(i, t, up, S, image, gi, gf, shear):
 
 
 @njit
+def next_slide(m, up, w, clock, speed):
+    """The time at which the unreduced offset reaches the cell edge that ends cell
+    ``m`` in the direction of flow (``(m + 1) w`` growing, ``m w`` shrinking),
+    from the fixed origin."""
+    edge = (m + 1) * w if up else m * w
+    return clock[T_ORIGIN] + (edge - clock[D_ORIGIN]) / speed
+
+
+@njit
 def slide(shear, gi, gf, head, nxt):
     """The slide due at ``clock[T_NEXT]``: step ``k``, restart the offset's clock
     there, and list every disk of the two edge rows in ``rows`` for a fresh
@@ -168,7 +193,7 @@ def slide(shear, gi, gf, head, nxt):
     k = column_shift(shear, ncx)
     shear.clock[T_BASE] = t
     shear.clock[DELTA_BASE] = k * w if up else (k + 1) * w
-    shear.clock[T_NEXT] = t + w / abs(shear.speed)
+    shear.clock[T_NEXT] = next_slide(shear.slides[0], up, w, shear.clock, shear.speed)
     n = 0
     for row in (0, ncy - 1):
         for col in range(ncx):

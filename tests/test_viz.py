@@ -347,6 +347,34 @@ def test_trails_follow_the_disk_and_break_at_periodic_wraps():
     assert alphas[wrapped] == pytest.approx([1 / 3, 1 / 3])
 
 
+def test_a_sheared_box_shows_its_images_shifted_and_trails_in_the_box_frame():
+    """Across the sliding boundary a disk near the bottom shows above, shifted by the
+    offset (and wrapped along x); near the top, below, shifted back.  A disk moving
+    up at (0.5, 4) through the top with rate 0.2 in a 10 x 10 box re-enters at the
+    bottom with x less the offset and its x velocity less U = 2: every trail step is
+    its velocity in the box's frame times the frame interval, never a jump."""
+    sim = ed.Simulation([[1.0, 0.2], [5.0, 9.9], [8.0, 5.0]], np.zeros((3, 2)), 0.5,
+                        box=ed.Box(10.0, 10.0), shear_rate=0.2, shear_offset=9.5)
+    ax = viz.draw(sim)
+    off = by_gid(ax, "edmd2d-disks").get_offsets()
+    images = {tuple(np.round(p, 12)) for p in off[3:]}
+    # disk 0 above at x 1 + 9.5 = 10.5 -> 0.5; disk 1 below at 5 - 9.5 = -4.5 -> 5.5
+    assert images == {(0.5, 10.2), (5.5, -0.1)}
+    plt.close(ax.figure)
+    sim = ed.Simulation([[3.0, 7.9], [8.0, 3.0]], [[0.5, 4.0], [0.0, 0.0]], 0.3,
+                        box=ed.Box(10.0, 10.0), shear_rate=0.2)
+    anim = viz.animate(sim, duration=1.0, fps=4, trail=4, trail_disks=[0])
+    trails = by_gid(anim.ax, "edmd2d-trails")
+    for k in range(len(anim.frame_times)):
+        anim.goto_frame(k)
+    steps, _ = trail_steps(trails)
+    # Before the exit the step is (0.5, 4) / 4; after it (0.5 - 2, 4) / 4 (both the
+    # copy in the frame before the exit and the one after).
+    lengths = sorted({tuple(np.round((b - a) * 4, 9)) for a, b in steps})
+    assert set(lengths) <= {(0.5, 4.0), (-1.5, 4.0)} and (-1.5, 4.0) in lengths
+    plt.close(anim.ax.figure)
+
+
 def test_trails_drawn_as_one_path_per_age_and_rendered_with_breaks():
     sim = ed.make_gas(30, 0.3, seed=seed_of(2))
     anim = viz.animate(sim, duration=1.0, fps=10, trail=4, blit=False, color_by=None,

@@ -401,10 +401,16 @@ class Snapshot:
     walls : tuple of Wall
     open_walls : ndarray of bool, shape (S,)
     counts : Counts
+    shear_offset : float
+        The offset of the images above a sheared box (0.0 without shear).
+    families : dict
+        The registered physics families (:attr:`Simulation.families
+        <edmd2d.Simulation.families>`).
     """
 
     __slots__ = ("time", "positions", "unwrapped_positions", "velocities", "radii",
-                 "masses", "species", "box", "walls", "open_walls", "counts")
+                 "masses", "species", "box", "walls", "open_walls", "counts",
+                 "shear_offset", "families")
 
     def __init__(self, sim: Simulation) -> None:
         self.time = sim.time
@@ -418,6 +424,8 @@ class Snapshot:
         self.walls = sim.walls
         self.open_walls = sim.open_walls
         self.counts = sim.counts
+        self.shear_offset = sim.shear_offset
+        self.families = sim.families
 
     def __len__(self) -> int:
         return len(self.positions)

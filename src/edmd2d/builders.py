@@ -13,6 +13,7 @@ drawn for the others, and the segments go to the simulation.  The command line
 from __future__ import annotations
 
 import math
+import numbers
 import warnings
 from collections.abc import Iterable
 from typing import Any
@@ -207,10 +208,7 @@ def make_gas(
         mass = mass[shuffle]
     pos, rad, mass = _leave_out_crossed(pos, rad, mass, segs, box, "make_gas", "lattice")
     vel = _maxwell_boltzmann(rng, mass, temperature, 0 if segs else sum(box.periodic))
-    rate = physics.get("shear_rate")
-    if isinstance(rate, (int, float)) and not isinstance(rate, bool) and math.isfinite(rate):
-        # (Sheared: the draw is the peculiar velocity, the flow is added to it.)
-        vel[:, 0] += rate * (pos[:, 1] - 0.5 * box.height)
+    vel = _with_shear_flow(vel, pos, box, physics.get("shear_rate"))
     return Simulation(pos, vel, rad, mass, box=box, gravity=gravity, restitution=restitution,
                       wall_restitution=wall_restitution, tc=tc,
                       wall_temperatures=wall_temperatures, thermostat=thermostat, seed=rng,
@@ -629,6 +627,20 @@ def _triangular_sites(n: int, box: Box, spacing_min: float):
     else:
         y = half + j * sy
     return np.column_stack([x, y])
+
+
+def _with_shear_flow(velocities: np.ndarray, positions: np.ndarray, box: Box,
+                    rate) -> np.ndarray:
+    """``velocities`` taken as peculiar ones, with the flow of a box sheared at ``rate``
+    added, ``(rate (y - height / 2), 0)`` (see :class:`edmd2d.physics.Shear`); as they
+    are for a ``rate`` that is ``None``, zero or not a finite number (which the
+    simulation then refuses, naming it)."""
+    if (not isinstance(rate, numbers.Real) or isinstance(rate, (bool, np.bool_))
+            or not math.isfinite(rate) or rate == 0):
+        return velocities
+    out = np.array(velocities, np.float64)
+    out[:, 0] += float(rate) * (positions[:, 1] - 0.5 * box.height)
+    return out
 
 
 def _maxwell_boltzmann(rng, mass, temperature, conserved_axes):

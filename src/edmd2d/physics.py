@@ -908,8 +908,9 @@ class Shear(Family):
     rate : float
         The shear rate (either sign; ``0``: no shear).
     offset : float
-        The offset of the images above at the simulation's ``time``, in ``[0,
-        width)``.
+        The offset of the images above where the shear started (the ``time`` the
+        simulation was made at), in ``[0, width)``; the offset now is
+        :attr:`Simulation.shear_offset <edmd2d.Simulation.shear_offset>`.
     """
 
     name: ClassVar[str] = "shear"

@@ -537,7 +537,8 @@ class Simulation(SimulationBase):
     def rescale_temperature(self, temperature: float) -> None:
         """Scale the velocities relative to the centre of mass so that the kinetic
         temperature (:func:`edmd2d.measurements.kinetic_temperature`) becomes
-        ``temperature``; the total momentum is kept.
+        ``temperature``; the total momentum is kept.  In a sheared box the peculiar
+        velocities are scaled (:attr:`peculiar_velocities`), and the flow kept.
 
         The simple thermostat of compressions and equilibrations, applied at the times
         the caller chooses (between ``advance`` calls).
@@ -567,7 +568,7 @@ class Simulation(SimulationBase):
         if not kt > 0.0:
             raise ValueError(f"temperature must be > 0, got {kt}")
         dof, conserved = _measurements.degrees_of_freedom(self)
-        vel = self.velocities
+        vel = self.peculiar_velocities
         movable = np.isfinite(self.masses)
         mass = self.masses[movable]
         centre = weighted_sum(mass, vel[movable]) / mass.sum()
@@ -584,6 +585,8 @@ class Simulation(SimulationBase):
                 "velocities instead)")
         new = vel.copy()
         new[movable] = centre + thermal * math.sqrt((kt * dof - free) / twice_thermal)
+        if self._state.shear is not None:
+            new += self.velocities - vel  # (the flow, kept)
         self.set_velocities(new)
 
     def dissipated_energy(self) -> float:
@@ -763,9 +766,13 @@ class Simulation(SimulationBase):
         # they have passed.
         # (Any grid serves the checks: the default one, also when the disks have grown
         # past a cell_size given at construction.)
+        # (Sheared, through the sliding boundary at the present offset.)
+        shear = self._state.shear
+        sheared = ({} if shear is None else
+                   {"shear_rate": shear.rate, "shear_offset": self.shear_offset})
         Simulation(pos, self.velocities, self.radii, self.masses, box=self._state.box,
                    walls=self._state.walls, open_walls=np.flatnonzero(self._state.wall_open),
-                   time=self._state.time)
+                   time=self._state.time, **sheared)
         state = self._state
         pos = _checks.check_in_box(state.box, pos, self.radii)  # (x = width becomes 0 if periodic)
         state.place(pos, _checks.resting(state.box, state.closed_walls(), state.gravity, pos,

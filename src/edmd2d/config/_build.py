@@ -118,6 +118,8 @@ def build(cfg: RunConfig,
         keep = builders.clear_of_walls(pos, rad, walls, start.box)
         if not keep.any():
             raise cfg.error(("walls",), "the wall segments cross every disk of the gas")
+        # (Sheared: the velocities drawn are the peculiar ones, in the flow.)
+        vel = builders._with_shear_flow(vel, pos, start.box, model.get("shear_rate"))
         sim = Simulation(
             pos[keep], vel[keep], rad[keep], mass[keep], box=start.box, walls=walls,
             open_walls=open_at_start,

@@ -171,3 +171,84 @@ def test_kolafa_rottner_range_and_the_other_equations_of_state():
     assert theory.kolafa_rottner_z(0.2) == pytest.approx(theory.virial_z(0.2), rel=1e-6)
     np.testing.assert_array_equal(theory.kolafa_rottner_z(np.array([0.1, 0.3])),
                                   [theory.kolafa_rottner_z(0.1), theory.kolafa_rottner_z(0.3)])
+
+
+def _viscosity_brackets(order, nodes):
+    """The collision brackets ``[psi_p, psi_q]`` of elastic hard disks for the shear
+    viscosity's trial functions ``psi_p = L_p^(2)(c^2) c_x c_y`` (``c`` in units of
+    ``sqrt(2 kT / m)``), ``p, q < order``, by Gauss rules over the centre-of-mass
+    velocity (Hermite), the relative speed (Laguerre), its direction (uniform) and
+    the impact parameter (Legendre): ``(1 / 4 pi^2) int dc dc1 exp(-c^2 - c1^2)
+    int_{-1}^{1} db |g| D psi_p D psi_q``, ``D psi`` the change of ``psi(c) +
+    psi(c1)`` in the collision (``g' = g - 2 (g.k) k``, ``k`` at ``arcsin b`` from
+    ``g``).  Every integrand is a polynomial (odd powers of ``sqrt(1 - b^2)`` cancel
+    between ``b`` and ``-b``), so the rules are exact once they have enough nodes."""
+    from numpy.polynomial.hermite import hermgauss
+    from numpy.polynomial.legendre import leggauss
+    from scipy.special import eval_genlaguerre, roots_genlaguerre
+
+    t, w = hermgauss(nodes)
+    gx, gy = np.meshgrid(t / math.sqrt(2.0), t / math.sqrt(2.0), indexing="ij")
+    centre = np.stack([gx.ravel(), gy.ravel()], axis=-1)
+    w_centre = np.outer(w, w).ravel() / 2.0
+    u, w_u = roots_genlaguerre(nodes, 0.5)
+    speed, w_speed = np.sqrt(2.0 * u), w_u * math.sqrt(2.0)
+    n_dir = 4 * order + 8
+    direction = 2.0 * math.pi * np.arange(n_dir) / n_dir
+    b, w_b = leggauss(2 * nodes)
+    ic, iv, idr, ib = (a.ravel() for a in np.meshgrid(
+        np.arange(len(centre)), np.arange(nodes), np.arange(n_dir), np.arange(len(b)),
+        indexing="ij"))
+    weight = w_centre[ic] * w_speed[iv] * (2.0 * math.pi / n_dir) * w_b[ib]
+    phi = direction[idr]
+    g = speed[iv, None] * np.stack([np.cos(phi), np.sin(phi)], axis=-1)
+    k = np.stack([np.cos(phi + np.arcsin(b[ib])), np.sin(phi + np.arcsin(b[ib]))], axis=-1)
+    g_after = g - 2.0 * np.sum(g * k, axis=-1)[:, None] * k
+    c0 = centre[ic]
+
+    def psi(c):
+        x = np.sum(c * c, axis=-1)
+        return np.stack([eval_genlaguerre(p, 2.0, x) * c[:, 0] * c[:, 1]
+                         for p in range(order)])
+
+    change = (psi(c0 + g / 2) + psi(c0 - g / 2) - psi(c0 + g_after / 2)
+              - psi(c0 - g_after / 2))
+    return (change * weight) @ change.T / (4.0 * math.pi**2)
+
+
+def test_the_sonine_correction_of_the_dilute_viscosity_from_the_collision_brackets():
+    """An independent computation of the Chapman-Enskog viscosity of hard disks: the
+    first bracket is ``sqrt(pi / 8)``, which gives ``eta_1 = (1 / 2 sigma) sqrt(m kT /
+    pi)`` (``eta_N = sqrt(m kT) / (2^(5/2) sigma) (M^-1)_00`` for the ``N x N``
+    brackets ``M``); the second and third approximations are ``51/50`` and
+    ``20605/20168`` times it, and the sixth lies within 6e-6 below the converged
+    ``theory.SONINE_VISCOSITY`` (twenty terms), the sequence growing to it."""
+    brackets = _viscosity_brackets(6, 14)
+    assert brackets[0, 0] == pytest.approx(math.sqrt(math.pi / 8), rel=1e-12)
+    first = math.sqrt(1.0) / 2.0**2.5 / brackets[0, 0]
+    assert first == pytest.approx(theory.dilute_viscosity(sonine=False), rel=1e-12)
+    ratios = [brackets[0, 0] * np.linalg.inv(brackets[:n, :n])[0, 0] for n in range(1, 7)]
+    assert ratios[1] == pytest.approx(51 / 50, rel=1e-12)
+    assert ratios[2] == pytest.approx(20605 / 20168, rel=1e-12)
+    assert all(b > a for a, b in zip(ratios, ratios[1:]))
+    assert 0.0 < theory.SONINE_VISCOSITY - ratios[5] < 6e-6
+
+
+def test_enskog_viscosity_limits_and_gass_formula():
+    """Dilute, Enskog's viscosity tends to the dilute one; first-Sonine it is Gass's
+    ``eta_1 [1/g + 2 eta + (1 + 8/pi) eta^2 g]``; the Sonine factor multiplies the
+    kinetic part only; it scales as ``sqrt(m kT) / sigma``."""
+    assert theory.enskog_viscosity(1e-12) == pytest.approx(theory.dilute_viscosity(), rel=1e-10)
+    eta = np.array([0.1, 0.3, 0.5])
+    g = theory.contact_value(theory.henderson_z(eta), eta)
+    gass = 1.0 / g + 2.0 * eta + (1.0 + 8.0 / math.pi) * eta**2 * g
+    first = theory.dilute_viscosity(sonine=False)
+    np.testing.assert_allclose(theory.enskog_viscosity(eta, sonine=False), first * gass,
+                               rtol=1e-14)
+    kinetic = first * (1.0 + eta * g) ** 2 / g
+    np.testing.assert_allclose(
+        theory.enskog_viscosity(eta) - theory.enskog_viscosity(eta, sonine=False),
+        (theory.SONINE_VISCOSITY - 1.0) * kinetic, rtol=1e-12)
+    assert theory.enskog_viscosity(0.3, temperature=4.0, mass=2.0, diameter=0.5) == \
+        pytest.approx(theory.enskog_viscosity(0.3) * math.sqrt(8.0) / 0.5, rel=1e-14)
+    assert theory.enskog_viscosity(0.3, g_contact=2.0) != theory.enskog_viscosity(0.3)

@@ -35,6 +35,23 @@ The formulas and where they come from:
   times the 2D cross-section ``2 sigma`` times the mean relative speed
   ``sqrt(pi kT / (2 mu)) = sqrt(pi kT / m)`` (reduced mass ``mu = m / 2``).  This is
   Enskog's collision frequency; in equilibrium it is exact once ``g(sigma)`` is.
+- The shear viscosity of the dilute gas (Chapman-Enskog for hard disks): in the
+  first Sonine approximation ``eta_1 = (1 / (2 sigma)) sqrt(m kT / pi)``; the higher
+  approximations, from the exact collision brackets of the tensor Sonine polynomials
+  ``L_p^(2)(c^2)`` for hard disks, multiply it by ``51/50`` (second), ``20605/20168``
+  (third, 1.021668), ... converging to ``1.0219707`` (twenty terms; a Monte Carlo
+  estimate of the same brackets agrees to 1e-4).  This 2.2 % is the 2D counterpart
+  of the 1.6 % of hard spheres.
+- Enskog's theory of the dense gas (D. M. Gass, J. Chem. Phys. 54, 1898 (1971); the
+  ``d``-dimensional form of V. Garzo and J. W. Dufty, Phys. Rev. E 59, 5895 (1999)
+  with ``d = 2`` and elastic collisions): ``eta_E = eta_0 (1 + eta g)^2 / g +
+  (8 / pi) eta^2 g eta_1``, with ``g = g(sigma)`` the pair distribution at contact.
+  The first term (kinetic transport and its collisional transfer) is proportional
+  to the dilute solution of the Boltzmann equation and takes its Sonine correction
+  (``eta_0``); the second, the collisional transfer of the local equilibrium, is the
+  absolute number ``(4 / pi^(3/2)) eta^2 g sqrt(m kT) / sigma`` and takes none.
+  First-Sonine, ``eta_E / eta_1 = 1 / g + 2 eta + (1 + 8 / pi) eta^2 g``, Gass's
+  formula.
 """
 
 from __future__ import annotations
@@ -59,6 +76,9 @@ __all__ = [
     "haff_temperature",
     "number_density",
     "mean_speed",
+    "SONINE_VISCOSITY",
+    "dilute_viscosity",
+    "enskog_viscosity",
     "maxwell_boltzmann_speed_pdf",
 ]
 
@@ -407,6 +427,93 @@ def homogeneous_cooling(restitution: float,
     """
     e = _restitution(restitution)
     return _out(np.exp(-(1.0 - e * e) * np.asarray(collisions_per_disk, dtype=float) / 2.0))
+
+
+#: The dilute shear viscosity of hard disks over its first Sonine approximation:
+#: the converged Chapman-Enskog value (see the module notes).
+SONINE_VISCOSITY = 1.0219706808
+
+
+def dilute_viscosity(temperature: float = 1.0, mass: float = 1.0, diameter: float = 1.0,
+                     sonine: bool = True) -> float:
+    """Shear viscosity of a dilute gas of hard disks (Chapman-Enskog, 2D):
+    ``eta_0 = f (1 / (2 sigma)) sqrt(m kT / pi)`` with ``f = SONINE_VISCOSITY`` (the
+    converged value), or ``f = 1`` (the first Sonine approximation).
+
+    It does not depend on the density: fewer carriers of momentum, each carrying it
+    further.  (In 2D the dilute limit is reached only in the sense of this
+    expansion: the long-time tail adds a term that grows with the logarithm of the
+    system's size; see :doc:`/shear`.)
+
+    Parameters
+    ----------
+    temperature, mass, diameter : float, default 1.0
+        ``kT``, ``m``, ``sigma``, each > 0.
+    sonine : bool, default True
+        The converged value (else the first Sonine approximation).
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(dilute_viscosity(sonine=False), 6)   # 1 / (2 sqrt(pi))
+    0.282095
+    >>> round(dilute_viscosity(), 6)
+    0.288293
+    """
+    kt = as_positive_float("temperature", temperature)
+    m = as_positive_float("mass", mass)
+    sigma = as_positive_float("diameter", diameter)
+    first = math.sqrt(m * kt / math.pi) / (2.0 * sigma)
+    return first * (SONINE_VISCOSITY if sonine else 1.0)
+
+
+def enskog_viscosity(eta: ArrayLike, g_contact: ArrayLike | None = None,
+                     temperature: float = 1.0, mass: float = 1.0, diameter: float = 1.0,
+                     sonine: bool = True) -> float | np.ndarray:
+    """Shear viscosity of hard disks in Enskog's theory (2D):
+    ``eta_E = eta_0 (1 + eta g)^2 / g + (8 / pi) eta^2 g eta_1``.
+
+    ``eta_0`` is :func:`dilute_viscosity` (converged, or the first Sonine
+    approximation ``eta_1`` with ``sonine=False``, which gives Gass's formula
+    ``eta_1 [1 / g + 2 eta + (1 + 8 / pi) eta^2 g]``); the last term, the collisional
+    transfer of the local equilibrium, takes no Sonine correction (module notes).
+    Enskog's theory takes collisions as uncorrelated; against simulations of hard
+    disks it holds within a few per cent up to packing fractions of about 0.5 and
+    falls short closer to freezing (:doc:`/shear`).
+
+    Parameters
+    ----------
+    eta : float or array_like
+        Packing fraction, in ``(0, 1)``.
+    g_contact : float or array_like, optional
+        The pair distribution at contact; default Henderson's,
+        ``contact_value(henderson_z(eta), eta) = (1 - 7 eta / 16) / (1 - eta)^2``.
+    temperature, mass, diameter : float, default 1.0
+    sonine : bool, default True
+
+    Returns
+    -------
+    float or ndarray
+
+    Examples
+    --------
+    >>> round(enskog_viscosity(0.3), 4)
+    0.4962
+    >>> round(enskog_viscosity(0.3, sonine=False)
+    ...       / dilute_viscosity(sonine=False), 4)   # Gass: 1/g + 2 eta + (1 + 8/pi) eta^2 g
+    1.7299
+    """
+    e = _eta(eta)
+    # (Henderson's contact value in the form that stays exact as eta -> 0, where
+    # (Z - 1) / (2 eta) would cancel.)
+    g = ((1.0 - 7.0 * e / 16.0) / (1.0 - e) ** 2 if g_contact is None
+         else np.asarray(g_contact, dtype=float))
+    first = dilute_viscosity(temperature, mass, diameter, sonine=False)
+    eta0 = first * (SONINE_VISCOSITY if sonine else 1.0)
+    return _out(eta0 * (1.0 + e * g) ** 2 / g + (8.0 / math.pi) * e * e * g * first)
 
 
 def haff_temperature(restitution: float, time: ArrayLike,

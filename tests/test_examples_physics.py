@@ -30,7 +30,8 @@ def load(name):
     ("rdf_dense_fluid", {"N": 300, "FRAMES": 5}),
     ("jammed_packing", {"N": 200}),
     ("compression_eos", {"N": 100, "RATE": 1e-2}),
-    ("sheared_fluid", {"N": 200, "PACKINGS": (0.3,), "COLLISIONS_PER_DISK": 200}),
+    ("sheared_fluid", {"N": 200, "PACKINGS": (0.3,), "RATES": (0.02,),
+                       "COLLISIONS_PER_DISK": 200}),
     ("granular_shear", {"N": 200, "RATES": (0.5, 1.0), "SETTLE": 10.0, "WINDOW": 20.0}),
 ])
 def test_example_writes_its_figure(name, small, tmp_path, capsys):

@@ -423,3 +423,21 @@ def test_the_viscosity_against_enskog_theory_from_dilute_to_dense():
         assert abs(eta / theory.enskog_viscosity(phi) - 1.0) < 0.04 + 3.0 * err / eta
     eta, _ = sheared_viscosity(0.6, 2000, (41, 42, 43), collisions_per_disk=4000)
     assert eta / theory.enskog_viscosity(0.6) > 1.08
+
+
+def test_the_count_of_idle_slides_survives_a_small_budget_of_events():
+    """The engine is called with a budget of events (at most the events left before
+    the next re-sort of the rows, which can be one); slides spend it.  The count of
+    slides with nothing ahead is kept between calls, so that disks at rest still end
+    in 'nothing can happen' rather than sliding for ever, one call at a time."""
+    from edmd2d._engine import layout
+
+    sim = ed.Simulation([[5.0, 5.0]], [[0.0, 0.0]], 0.5, box=ed.Box(10.0, 10.0),
+                        shear_rate=1.0)
+    state = sim._state
+    out, info = np.array([state.time]), np.full(2, -1, np.int64)
+    ncx = int(state.gi[0])
+    statuses = [state.run(math.inf, 1, 1, out, info, layout.RUN_EVENTS)
+                for _ in range(ncx + 3)]
+    assert statuses[:ncx + 2] == [layout.REACHED_EVENT_LIMIT] * (ncx + 2)
+    assert statuses[-1] == layout.NO_EVENTS

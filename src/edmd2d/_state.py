@@ -186,6 +186,7 @@ class EngineState:
                 raise ValueError("shear_rate does not combine with growth")
         self.shear_clock: np.ndarray | None = None
         self.shear_slides: np.ndarray | None = None
+        self.shear_idle: np.ndarray | None = None
         self.shear_flights: np.ndarray | None = None
         self.build_grid(pos, self.grid_diameter(2.0 * float(rad.max())), cell_size)
         with about("positions"):
@@ -264,7 +265,7 @@ class EngineState:
         state.setdefault("rest_frozen", None)
         state.setdefault("rest_t_static", None)
         state.setdefault("wall_open", np.zeros(len(state["walls"]), bool))
-        for name in ("shear_clock", "shear_slides", "shear_flights"):
+        for name in ("shear_clock", "shear_slides", "shear_flights", "shear_idle"):
             state.setdefault(name, None)  # (saved before boxes could be sheared)
         state["log_capacity"] = 0  # (a copy does not stream)
         acc = state["acc"]
@@ -891,6 +892,7 @@ class EngineState:
             m -= 1  # (moving down from exactly a cell's edge: in the cell below it)
         reduced = unreduced - self.box.width * (m // ncx)  # (within [k w, (k + 1) w])
         self.shear_slides = np.array([m], np.int64)
+        self.shear_idle = np.zeros(1, np.int64)
         self.shear_clock = np.array([self.time, 0.0, reduced, self.time, unreduced])
         self.shear_clock[1] = _sheared.next_slide(m, speed > 0.0, w, self.shear_clock, speed)
         if self.shear_flights is None:
@@ -912,11 +914,13 @@ class EngineState:
         if self.shear is None:
             return None
         assert (self.shear_clock is not None and self.shear_slides is not None
-                and self.shear_flights is not None)  # (started with the grid)
+                and self.shear_flights is not None
+                and self.shear_idle is not None)  # (started with the grid)
         n = len(self.S)
         return _layout.Shear(self.shear.rate, self.shear.rate * self.box.height,
                              0.5 * self.box.height, self.shear_clock, self.shear_slides,
-                             np.empty(n, np.int64), np.empty(n), self.shear_flights)
+                             np.empty(n, np.int64), np.empty(n), self.shear_flights,
+                             self.shear_idle)
 
     def kinetic_stress_integral(self) -> np.ndarray:
         """Under shear: the time integrals since the shear started of ``sum m u_x^2``,

@@ -511,6 +511,8 @@ def enskog_viscosity(eta: ArrayLike, g_contact: ArrayLike | None = None,
     # (Z - 1) / (2 eta) would cancel.)
     g = ((1.0 - 7.0 * e / 16.0) / (1.0 - e) ** 2 if g_contact is None
          else np.asarray(g_contact, dtype=float))
+    if not np.all(g > 0):
+        raise ValueError(f"g_contact must be > 0, got {g_contact!r}")
     first = dilute_viscosity(temperature, mass, diameter, sonine=False)
     eta0 = first * (SONINE_VISCOSITY if sonine else 1.0)
     return _out(eta0 * (1.0 + e * g) ** 2 / g + (8.0 / math.pi) * e * e * g * first)

@@ -517,6 +517,9 @@ class Shear(NamedTuple):
     #: float64, shape (3,): the time integrals over free flights of ``sum m u_x^2``,
     #: ``sum m u_y^2`` and ``sum m u_x u_y`` (``u`` the peculiar velocity).
     flights: np.ndarray
+    #: int64, shape (1,): slides in a row with no event of a disk ahead (kept from one
+    #: call of the loop to the next, whatever its budget of events).
+    idle: np.ndarray
 
 
 class ModelFamilies(NamedTuple):

@@ -255,7 +255,6 @@ def run(control, particles, grid, walls, calendar, tallies, log,
     direction = -1
     stale = False
     sliding = False
-    idle = 0  # (slides in a row with no event of a disk ahead)
     mark = -1
     t_redo0 = INF
     t_redo1 = INF
@@ -286,12 +285,12 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                         # crosses cells).  Their images slide past at U alone, so
                         # within one slide past the whole width every pair that ever
                         # meets is predicted; after that nothing ever happens.
-                        idle += 1
-                        if idle > ncx + 2:
+                        shear.idle[0] += 1
+                        if shear.idle[0] > ncx + 2:
                             status = NO_EVENTS
                             break
                     else:
-                        idle = 0
+                        shear.idle[0] = 0
                     sliding = True
                     t = t_slide
             if uniforms is not None and not sliding:

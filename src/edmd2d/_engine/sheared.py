@@ -40,7 +40,9 @@ slide, of the next, the offset at the last, and the time and unreduced offset wh
 the shear started; ``slides[0] = m``, the cell edges of ``D`` passed (from 0: ``m =
 floor(D / w)`` while ``D`` grows, one less at an edge while it shrinks), whose
 remainder ``m mod ncx`` is ``k``; room for the disks of a slide (``rows``) and
-their predicted times (``times``); and ``flights``, the exact time integrals
+their predicted times (``times``); ``idle``, the slides in a row with no event of a
+disk ahead (after one pass of the images over the width, nothing can happen any
+more: every disk is at rest); and ``flights``, the exact time integrals
 over every free flight of ``sum m u_x^2``, ``sum m u_y^2`` and ``sum m u_x u_y`` (the
 kinetic part of the pressure tensor; ``u`` changes in flight, ``du_x/dt = -rate
 v_y``), added as each disk is moved (:func:`flight`).

@@ -332,7 +332,10 @@ class _Scene:
             dt = tb - ta
             start_parts = [a + sb + np.column_stack([ub * dt, np.zeros(len(ub))])]
             end_parts = [b + sb]
-            wrapped = (sa != sb).any(axis=1)
+            # (Wrapped: the box crossed along y, or a width along x beyond the
+            # frame's slide.)
+            wrapped = (sa[:, 1] != sb[:, 1]) | (
+                np.abs(sa[:, 0] - sb[:, 0] - ub * dt) > 0.5 * self._size[0])
             if wrapped.any():
                 start_parts.append(a[wrapped] + sa[wrapped])
                 end_parts.append(b[wrapped] + sa[wrapped]

@@ -927,17 +927,8 @@ class EngineState:
         ``sum m u_y^2`` and ``sum m u_x u_y`` over the peculiar velocities ``u``, up
         to :attr:`time` (the flights since each disk's last event included, exactly)."""
         assert self.shear is not None and self.shear_flights is not None
-        S = self.S
-        g = self.shear.rate
-        tau = self.time - S[:, _layout.T]
-        m = 1.0 / self.invm
-        vy = S[:, _layout.VY]
-        ux = S[:, _layout.VX] - g * (S[:, _layout.Y] - 0.5 * self.box.height)
-        gv = g * vy * tau
-        return self.shear_flights + np.array([
-            dot(m * tau, ux * ux - gv * ux + gv * gv / 3.0),
-            dot(m * tau, vy * vy),
-            dot(m * tau, vy * (ux - 0.5 * gv))])
+        return self.shear_flights + np.array(_sheared.pending(
+            self.time, self.S, self.invm, self.shear.rate, 0.5 * self.box.height))
 
     def growth_bundle(self):
         """The engine's growth family: ``None`` (fixed radii) or a ``layout.Growth``."""

@@ -4,7 +4,7 @@ above and below slide along x.
 The images one box above move at ``U = rate * height`` relative to the box and are
 shifted along x by the offset ``delta(t)``; the images below at ``-U``, by
 ``-delta(t)``.  A disk seen through the boundary (image shift ``sy = +-1``) is therefore
-at ``x_j + sy delta(t)`` (the nearest image along x) with the velocity
+at ``x_j + sy delta(t)`` (up to whole widths: which image, below) with the velocity
 ``v_j + (sy U, 0)``: its contact with a disk of the box is again a straight-line
 problem (:func:`.predict.pair_time`), and its collision an ordinary one between the
 disk and that image.  A disk that leaves through the top re-enters at the bottom with
@@ -208,20 +208,42 @@ def slide(shear, gi, gf, head, nxt):
 
 
 @njit
-def flight(i, t, S, invm, shear):
-    """Add disk ``i``'s free flight from its local time to ``t`` to the integrals of
-    the kinetic stress (module notes): with ``u_x(s) = u_x0 - rate v_y s``,
+def _integrals(i, t, S, invm, rate, half):
+    """Disk ``i``'s free flight from its local time to ``t`` in the integrals of the
+    kinetic stress (module notes): with ``u_x(s) = u_x0 - rate v_y s``,
     ``int u_x^2 = u_x0^2 tau - rate v_y u_x0 tau^2 + rate^2 v_y^2 tau^3 / 3``,
     ``int u_y^2 = v_y^2 tau`` and ``int u_x u_y = v_y (u_x0 tau - rate v_y tau^2 / 2)``,
-    times the mass."""
+    times the mass: ``(xx, yy, xy)``."""
     tau = t - S[i, T]
-    if tau == 0.0:
-        return
     m = 1.0 / invm[i]
-    g = shear.rate
     vy = S[i, VY]
-    ux = S[i, VX] - g * (S[i, Y] - shear.half)
-    gv = g * vy * tau
-    shear.flights[F_XX] += m * tau * (ux * ux - gv * ux + gv * gv / 3.0)
-    shear.flights[F_YY] += m * tau * vy * vy
-    shear.flights[F_XY] += m * tau * vy * (ux - 0.5 * gv)
+    ux = S[i, VX] - rate * (S[i, Y] - half)
+    gv = rate * vy * tau
+    return (m * tau * (ux * ux - gv * ux + gv * gv / 3.0), m * tau * vy * vy,
+            m * tau * vy * (ux - 0.5 * gv))
+
+
+@njit
+def flight(i, t, S, invm, shear):
+    """Add disk ``i``'s free flight from its local time to ``t`` to the integrals of
+    the kinetic stress, as the engine moves it."""
+    if t == S[i, T]:
+        return
+    xx, yy, xy = _integrals(i, t, S, invm, shear.rate, shear.half)
+    shear.flights[F_XX] += xx
+    shear.flights[F_YY] += yy
+    shear.flights[F_XY] += xy
+
+
+@njit
+def pending(t, S, invm, rate, half):
+    """The flights of every disk from its local time to ``t`` in the integrals of
+    the kinetic stress, summed: ``(xx, yy, xy)`` (what the engine adds as it next
+    moves each disk; for readouts between events)."""
+    xx = yy = xy = 0.0
+    for i in range(S.shape[0]):
+        a, b, c = _integrals(i, t, S, invm, rate, half)
+        xx += a
+        yy += b
+        xy += c
+    return xx, yy, xy

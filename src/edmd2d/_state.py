@@ -21,6 +21,7 @@ from ._checks import OVERLAP_TOL
 from ._engine import aligned_rows
 from ._engine import flight as _flight
 from ._engine import grid as _grid
+from ._engine import helfand as _helfand
 from ._engine import layout as _layout
 from ._engine import loop as _loop
 from ._engine import overlap as _overlap
@@ -188,6 +189,9 @@ class EngineState:
         self.shear_slides: np.ndarray | None = None
         self.shear_idle: np.ndarray | None = None
         self.shear_flights: np.ndarray | None = None
+        # The sums of the Einstein-Helfand moments while they are kept (see
+        # _engine/helfand.py; started and stopped by edmd2d.transport).
+        self.helfand_sums: np.ndarray | None = None
         self.build_grid(pos, self.grid_diameter(2.0 * float(rad.max())), cell_size)
         with about("positions"):
             self.check_overlaps(pos, rad)
@@ -267,6 +271,7 @@ class EngineState:
         state.setdefault("wall_open", np.zeros(len(state["walls"]), bool))
         for name in ("shear_clock", "shear_slides", "shear_flights", "shear_idle"):
             state.setdefault(name, None)  # (saved before boxes could be sheared)
+        state.setdefault("helfand_sums", None)  # (saved before the Helfand moments)
         state["log_capacity"] = 0  # (a copy does not stream)
         acc = state["acc"]
         if len(acc) < _layout.N_ACC:  # (saved before gravity could be changed)
@@ -486,6 +491,9 @@ class EngineState:
         first, as the engine adds each flight when it moves a disk."""
         if self.shear_flights is not None:
             self.shear_flights[:] = self.kinetic_stress_integral()
+        if self.helfand_sums is not None:
+            self.helfand_sums[:_helfand.H_CX] += _helfand.pending(self.time, self.S,
+                                                                  self.invm)
         _flight.drift_all(self.time, self.S, self.gravity_bundle())
 
     # ------------------------------------------------------------------ readouts
@@ -663,6 +671,7 @@ class EngineState:
             self.log_bundle(),
             families.contact, families.heated, families.thermostat, families.uniforms,
             self.gravity_bundle(), self.growth_bundle(), rest, self.shear_bundle(),
+            None if self.helfand_sums is None else _layout.Helfand(self.helfand_sums),
         )
 
     def rest_bundle(self):
@@ -929,6 +938,23 @@ class EngineState:
         assert self.shear is not None and self.shear_flights is not None
         return self.shear_flights + np.array(_sheared.pending(
             self.time, self.S, self.invm, self.shear.rate, 0.5 * self.box.height))
+
+    def helfand_moments(self) -> np.ndarray:
+        """The Einstein-Helfand moments at :attr:`time`, kept since they were started
+        (:mod:`edmd2d.transport`): the time integrals of the momentum flux
+        ``(xx, yy, xy)`` and of the energy flux ``(x, y)``, each the sum of its flight
+        integrals (those since each disk's last move included, exactly) and its
+        collisional transfers (the momentum part: the collision virial, counted from
+        the simulation's start)."""
+        assert self.helfand_sums is not None
+        sums = self.helfand_sums
+        flights = sums[:_helfand.H_CX] + _helfand.pending(self.time, self.S, self.invm)
+        acc = self.acc
+        return np.array([flights[0] + acc[_layout.A_VIRIAL_XX],
+                         flights[1] + acc[_layout.A_VIRIAL_YY],
+                         flights[2] + acc[_layout.A_VIRIAL_XY],
+                         flights[3] + sums[_helfand.H_CX],
+                         flights[4] + sums[_helfand.H_CY]])
 
     def growth_bundle(self):
         """The engine's growth family: ``None`` (fixed radii) or a ``layout.Growth``."""

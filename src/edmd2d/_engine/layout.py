@@ -522,6 +522,16 @@ class Shear(NamedTuple):
     idle: np.ndarray
 
 
+class Helfand(NamedTuple):
+    """The Einstein-Helfand moments' sums (see :mod:`.helfand`)."""
+
+    #: float64, shape (7,): the flight integrals of ``sum m v_x^2``, ``sum m v_y^2``,
+    #: ``sum m v_x v_y``, ``sum v_x e`` and ``sum v_y e``, and the collisional
+    #: energy transfers ``sum d_x de`` and ``sum d_y de`` (``helfand.H_XX`` ..
+    #: ``H_CY``).
+    sums: np.ndarray
+
+
 class ModelFamilies(NamedTuple):
     """The families a ``models.Model`` hands the engine, each ``None`` when unused."""
 

@@ -51,7 +51,11 @@ argument per physics family, each ``None`` when unused:
     Lees-Edwards boundaries (``layout.Shear``, :mod:`.sheared`): the images above and
     below the box slide along x; when they have slid by a cell width (a ``SLIDE``, due
     at ``shear.clock[T_NEXT]``, processed before any later event and never logged),
-    the disks of the top and bottom rows of cells are predicted afresh.
+    the disks of the top and bottom rows of cells are predicted afresh;
+``helfand``
+    the sums of the Einstein-Helfand moments (``layout.Helfand``, :mod:`.helfand`):
+    each disk's free flights as the loop moves it, and each collision's transfer of
+    energy across the pair (elastic disks in a periodic box only).
 
 numba prunes the branches of an argument that is ``None``, so each combination of
 families compiles its own ``run``, only when used, and the elastic default compiles to
@@ -65,6 +69,7 @@ import math
 import numpy as np
 
 from .._jit import kernel, njit
+from . import helfand as _helfand
 from . import lookahead, prefetch, queue, response, resting, sheared
 from .flight import drift, velocity_at
 from .grid import insert, remove
@@ -169,7 +174,7 @@ def _make_room(m, k, log_t, log_e, log_j):
 
 @kernel
 def run(control, particles, grid, walls, calendar, tallies, log,
-        contact, heated, thermostat, uniforms, gravity, growth, rest, shear):
+        contact, heated, thermostat, uniforms, gravity, growth, rest, shear, helfand):
     """Process events in time order (``control.mode`` RUN_EVENTS), or (``mode``
     PREDICT_ALL) predict every disk's next event from the time ``out[0]`` and rebuild
     the queue.  (``t_end``, ``max_collisions``, ``max_events``, ``mode``, ``out`` and
@@ -385,6 +390,9 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     if shear is not None:
                         sheared.flight(i, t, S, invm, shear)
                         sheared.flight(j, t, S, invm, shear)
+                    if helfand is not None:
+                        _helfand.flight(i, t, S, invm, helfand)
+                        _helfand.flight(j, t, S, invm, helfand)
                     drift(i, t, S, gravity)
                     drift(j, t, S, gravity)
                     still = False  # (j at rest, and staying so)
@@ -415,8 +423,12 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                             # release a disk that it pushes into its wall.)
                             held_i = gravity.support[i]
                             held_j = gravity.support[j]
+                        if helfand is not None:
+                            e_before = _helfand.energy(i, S, invm)
                         response.collide_pair(i, j, t, aux, S, invm, acc, gf, contact,
                                               gravity, growth, shear)
+                        if helfand is not None:
+                            _helfand.heat(i, j, aux, e_before, S, invm, gf, helfand)
                         if rest is not None:
                             resting.part(i, j, aux, held_i, held_j, S, invm, acc, gf,
                                          gravity, rest)
@@ -481,6 +493,8 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                                  counts, heated, gravity, rest)
                 if shear is not None:
                     sheared.flight(i, t, S, invm, shear)
+                if helfand is not None:
+                    _helfand.flight(i, t, S, invm, helfand)
                 drift(i, t, S, gravity)
                 response.redraw(i, S, invm, acc, thermostat, uniforms, gravity, shear)
                 stamp[i] += 1
@@ -491,6 +505,8 @@ def run(control, particles, grid, walls, calendar, tallies, log,
             else:  # CROSS
                 if shear is not None:
                     sheared.flight(i, t, S, invm, shear)
+                if helfand is not None:
+                    _helfand.flight(i, t, S, invm, helfand)
                 drift(i, t, S, gravity)
                 c = E[i, CELL]
                 cy = c // ncx

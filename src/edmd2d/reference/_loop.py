@@ -151,6 +151,9 @@ class ReferenceSimulation(CollisionRules):
         ``r`` the separation of the disks at contact (from the image of the partner to
         the disk) and ``J`` the impulse on the disk (bounces off disks at rest, with
         ``resting``, aside).
+    heat_x, heat_y : float
+        ``sum d de`` over every disk-disk collision so far, ``de`` the kinetic energy
+        the disk gained (the collisional part of :meth:`heat_moment`).
 
     Notes
     -----
@@ -309,6 +312,12 @@ class ReferenceSimulation(CollisionRules):
         self.virial_yy = 0.0
         self.virial_xy = 0.0
         self.flight_stress = [0.0, 0.0, 0.0]
+        # The Helfand moment of heat: the time integrals of sum v e over the flights,
+        # (x, y), e = m v^2 / 2 in the lab frame (see _flight_stress), and the energy
+        # each collision carried across the pair, sum d de (see _rules).
+        self.flight_heat = [0.0, 0.0]
+        self.heat_x = 0.0
+        self.heat_y = 0.0
         # The box walls (0..3: x=0, x=width, y=0, y=height) each disk rests on.  An
         # inelastic model with tc > 0 holds a disk on a wall that gravity presses it
         # into once its next bounce would come within tc (and a disk that starts at
@@ -530,6 +539,13 @@ class ReferenceSimulation(CollisionRules):
                                                       (ux, uy, bx, by))):
                 self.flight_stress[slot] += m * (ua * ub * dt + (ua * bb + ba * ub) * h2
                                                  + ba * bb * h3)
+            # sum v_a e in the lab frame, v(t) = v0 + a t: v_a |v|^2 is a cubic in t.
+            v0 = self.v[k]
+            w2, wa, a2 = _dot(v0, v0), v0[0] * ax + v0[1] * ay, ax * ax + ay * ay
+            for slot, (va, aa) in enumerate(((v0[0], ax), (v0[1], ay))):
+                self.flight_heat[slot] += 0.5 * m * (
+                    va * w2 * dt + (aa * w2 + 2.0 * va * wa) * h2
+                    + (2.0 * aa * wa + va * a2) * h3 + aa * a2 * dt ** 4 / 4.0)
 
     def _wrap(self):
         """Bring centres back into the box on periodic axes (after an event is resolved,
@@ -735,6 +751,19 @@ class ReferenceSimulation(CollisionRules):
         """
         xx, yy, xy = self.flight_stress
         return (xx, yy, xy)
+
+    def heat_moment(self) -> tuple[float, float]:
+        """The Helfand moment of heat since the start, up to now.
+
+        Returns
+        -------
+        tuple of float
+            ``(x, y)``: the time integrals of ``sum v e`` over the movable disks'
+            flights (``e = m v^2 / 2``, lab frame, each flight integrated exactly)
+            plus ``sum d de`` over the collisions (``d`` from the image of ``j`` to
+            ``i`` at contact, ``de`` the kinetic energy ``i`` gained).
+        """
+        return (self.flight_heat[0] + self.heat_x, self.flight_heat[1] + self.heat_y)
 
     def kinetic_energy(self) -> float:
         """The kinetic energy of the movable disks.

@@ -27,8 +27,8 @@ class CollisionRules(RestingRules):
     ``v``, ``r``, ``m``, ``dr``, ``t_last``, ``resting`` and ``species``, the settings
     ``tc``, ``growth``, ``restitution``, ``wall_restitution``, ``gravity`` and
     ``wall_kt``, the clock ``time``, the tallies ``dissipated``, ``wall_heat``,
-    ``collisions``, ``wall_collisions`` and ``virial_xx``, ``virial_yy`` and
-    ``virial_xy``, and the random draws ``_u`` and ``_gauss``
+    ``collisions``, ``wall_collisions``, ``virial_xx``, ``virial_yy`` and
+    ``virial_xy``, ``heat_x`` and ``heat_y``, and the random draws ``_u`` and ``_gauss``
     (one stream for the whole run, shared with the thermostat); and, where disks come
     to rest (``rest`` not ``None``), the state of :class:`RestingRules`, whose rules
     it calls after each contact.
@@ -57,6 +57,8 @@ class CollisionRules(RestingRules):
     virial_xx: float
     virial_yy: float
     virial_xy: float
+    heat_x: float
+    heat_y: float
     rest: Any
     _u: Callable[[], float]
     _gauss: Callable[[], float]
@@ -144,6 +146,7 @@ class CollisionRules(RestingRules):
                 mt = self.m[i] + self.m[j]
                 fi, fj = k * self.m[j] / mt, k * self.m[i] / mt
                 mu = self.m[i] * self.m[j] / mt  # the reduced mass
+            e_before = 0.5 * self.m[i] * _dot(v, v) if fi else 0.0
             self.v[i] = [v[0] - fi * vn * n[0], v[1] - fi * vn * n[1]]
             self.v[j] = [self.v[j][0] + fj * vn * n[0], self.v[j][1] + fj * vn * n[1]]
             # The kinetic energy of the relative normal motion, mu vn^2 / 2, times 1 - e^2.
@@ -154,6 +157,11 @@ class CollisionRules(RestingRules):
             self.virial_xx += d[0] * jx
             self.virial_yy += d[1] * jy
             self.virial_xy += d[0] * jy
+            # The energy i gained, carried across d (the Helfand moment of heat).
+            if fi:
+                de = 0.5 * self.m[i] * _dot(self.v[i], self.v[i]) - e_before
+                self.heat_x += d[0] * de
+                self.heat_y += d[1] * de
             for disk in (i, j):
                 self._note(disk)
                 self._release(disk)

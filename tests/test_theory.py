@@ -173,16 +173,22 @@ def test_kolafa_rottner_range_and_the_other_equations_of_state():
                                   [theory.kolafa_rottner_z(0.1), theory.kolafa_rottner_z(0.3)])
 
 
-def _viscosity_brackets(order, nodes):
-    """The collision brackets ``[psi_p, psi_q]`` of elastic hard disks for the shear
-    viscosity's trial functions ``psi_p = L_p^(2)(c^2) c_x c_y`` (``c`` in units of
-    ``sqrt(2 kT / m)``), ``p, q < order``, by Gauss rules over the centre-of-mass
-    velocity (Hermite), the relative speed (Laguerre), its direction (uniform) and
-    the impact parameter (Legendre): ``(1 / 4 pi^2) int dc dc1 exp(-c^2 - c1^2)
-    int_{-1}^{1} db |g| D psi_p D psi_q``, ``D psi`` the change of ``psi(c) +
-    psi(c1)`` in the collision (``g' = g - 2 (g.k) k``, ``k`` at ``arcsin b`` from
-    ``g``).  Every integrand is a polynomial (odd powers of ``sqrt(1 - b^2)`` cancel
-    between ``b`` and ``-b``), so the rules are exact once they have enough nodes."""
+def _brackets(order, nodes, family="viscosity"):
+    """The collision brackets ``[psi_p, psi_q]`` of elastic hard disks (``c`` in units
+    of ``sqrt(2 kT / m)``) for the trial functions of a transport coefficient, by
+    Gauss rules over the centre-of-mass velocity (Hermite), the relative speed
+    (Laguerre), its direction (uniform) and the impact parameter (Legendre):
+    ``(1 / 4 pi^2) int dc dc1 exp(-c^2 - c1^2) int_{-1}^{1} db |g| D psi_p D psi_q``.
+
+    ``family``: ``"viscosity"``, ``psi_p = L_p^(2)(c^2) c_x c_y`` (``p < order``),
+    ``D psi`` the change of ``psi(c) + psi(c1)`` in the collision (``g' = g - 2 (g.k)
+    k``, ``k`` at ``arcsin b`` from ``g``); ``"heat"``, ``psi_p = L_p^(1)(c^2) c_x``
+    (``1 <= p <= order``: ``p = 0`` is momentum, conserved); ``"diffusion"``, the same
+    functions from ``p = 0``, of a tagged disk among identical ones, ``D psi`` the
+    change of ``psi(c)`` alone (the bracket of a tracer, up to a factor that ratios
+    do not see).  Every integrand is a polynomial (odd powers of ``sqrt(1 - b^2)``
+    come with odd powers of ``b`` and cancel between ``b`` and ``-b``), so the rules
+    are exact once they have enough nodes."""
     from numpy.polynomial.hermite import hermgauss
     from numpy.polynomial.legendre import leggauss
     from scipy.special import eval_genlaguerre, roots_genlaguerre
@@ -205,15 +211,26 @@ def _viscosity_brackets(order, nodes):
     k = np.stack([np.cos(phi + np.arcsin(b[ib])), np.sin(phi + np.arcsin(b[ib]))], axis=-1)
     g_after = g - 2.0 * np.sum(g * k, axis=-1)[:, None] * k
     c0 = centre[ic]
+    alpha, first, shape = {"viscosity": (2.0, 0, lambda c: c[:, 0] * c[:, 1]),
+                           "heat": (1.0, 1, lambda c: c[:, 0]),
+                           "diffusion": (1.0, 0, lambda c: c[:, 0])}[family]
 
     def psi(c):
         x = np.sum(c * c, axis=-1)
-        return np.stack([eval_genlaguerre(p, 2.0, x) * c[:, 0] * c[:, 1]
-                         for p in range(order)])
+        return np.stack([eval_genlaguerre(p, alpha, x) * shape(c)
+                         for p in range(first, first + order)])
 
-    change = (psi(c0 + g / 2) + psi(c0 - g / 2) - psi(c0 + g_after / 2)
-              - psi(c0 - g_after / 2))
+    change = psi(c0 + g / 2) - psi(c0 + g_after / 2)
+    if family != "diffusion":
+        change += psi(c0 - g / 2) - psi(c0 - g_after / 2)
     return (change * weight) @ change.T / (4.0 * math.pi**2)
+
+
+def _sonine_ratios(brackets):
+    """``c_N / c_1`` for ``N = 1 .. len(brackets)``: the coefficient from the first
+    ``N`` trial functions (only the first has a source) over the first approximation."""
+    return [brackets[0, 0] * np.linalg.inv(brackets[:n, :n])[0, 0]
+            for n in range(1, len(brackets) + 1)]
 
 
 def test_the_sonine_correction_of_the_dilute_viscosity_from_the_collision_brackets():
@@ -223,15 +240,33 @@ def test_the_sonine_correction_of_the_dilute_viscosity_from_the_collision_bracke
     brackets ``M``); the second and third approximations are ``51/50`` and
     ``20605/20168`` times it, and the sixth lies within 6e-6 below the converged
     ``theory.SONINE_VISCOSITY`` (twenty terms), the sequence growing to it."""
-    brackets = _viscosity_brackets(6, 14)
+    brackets = _brackets(6, 14)
     assert brackets[0, 0] == pytest.approx(math.sqrt(math.pi / 8), rel=1e-12)
     first = math.sqrt(1.0) / 2.0**2.5 / brackets[0, 0]
     assert first == pytest.approx(theory.dilute_viscosity(sonine=False), rel=1e-12)
-    ratios = [brackets[0, 0] * np.linalg.inv(brackets[:n, :n])[0, 0] for n in range(1, 7)]
+    ratios = _sonine_ratios(brackets)
     assert ratios[1] == pytest.approx(51 / 50, rel=1e-12)
     assert ratios[2] == pytest.approx(20605 / 20168, rel=1e-12)
     assert all(b > a for a, b in zip(ratios, ratios[1:]))
     assert 0.0 < theory.SONINE_VISCOSITY - ratios[5] < 6e-6
+
+
+@pytest.mark.parametrize("family, second, third, sixth_below, converged", [
+    ("heat", 39 / 38, 6331 / 6152, 1.4e-5, theory.SONINE_CONDUCTIVITY),
+    ("diffusion", 43 / 42, 104377 / 101688, 1.8e-5, theory.SONINE_DIFFUSION),
+])
+def test_the_sonine_corrections_of_heat_conduction_and_self_diffusion(
+        family, second, third, sixth_below, converged):
+    """The same computation for the thermal conductivity (heat-flux functions
+    ``L_p^(1)(c^2) c_x``, ``p >= 1``) and for self-diffusion (the same functions from
+    ``p = 0``, with the bracket of a tagged disk): the second and third approximations
+    are the exact ratios, the sequence grows, and the sixth lies just below the
+    converged ``theory`` constants (twenty terms, in exact arithmetic)."""
+    ratios = _sonine_ratios(_brackets(6, 14, family))
+    assert ratios[1] == pytest.approx(second, rel=1e-12)
+    assert ratios[2] == pytest.approx(third, rel=1e-12)
+    assert all(b > a for a, b in zip(ratios, ratios[1:]))
+    assert 0.0 < converged - ratios[5] < sixth_below
 
 
 def test_enskog_viscosity_limits_and_gass_formula():
@@ -252,3 +287,55 @@ def test_enskog_viscosity_limits_and_gass_formula():
     assert theory.enskog_viscosity(0.3, temperature=4.0, mass=2.0, diameter=0.5) == \
         pytest.approx(theory.enskog_viscosity(0.3) * math.sqrt(8.0) / 0.5, rel=1e-14)
     assert theory.enskog_viscosity(0.3, g_contact=2.0) != theory.enskog_viscosity(0.3)
+
+
+def test_enskog_conduction_bulk_viscosity_and_diffusion():
+    """Dilute, each tends to its Chapman-Enskog value (the bulk viscosity to 0);
+    first-Sonine the conductivity is ``lambda_1 [1/g + 3 eta + (9/4 + 4/pi) eta^2 g]``
+    (Gass); the Sonine factor multiplies the kinetic group only; the bulk viscosity
+    is ``(16/pi) eta^2 g eta_1``, which is also the conductivity's collisional transfer
+    of the local equilibrium (``k_B / m`` times it, in 2D); ``D_E = D_0 / g`` with
+    ``D_0 = f sqrt(kT / (pi m)) / (2 n sigma)``; each scales with ``kT``, ``m`` and
+    ``sigma`` as its units say."""
+    eta = np.array([0.1, 0.3, 0.5])
+    g = theory.contact_value(theory.henderson_z(eta), eta)
+    lam1 = theory.dilute_thermal_conductivity(sonine=False)
+    assert lam1 == pytest.approx(4.0 * theory.dilute_viscosity(sonine=False), rel=1e-14)
+    assert theory.enskog_thermal_conductivity(1e-12) == pytest.approx(
+        theory.dilute_thermal_conductivity(), rel=1e-10)
+    np.testing.assert_allclose(
+        theory.enskog_thermal_conductivity(eta, sonine=False),
+        lam1 * (1.0 / g + 3.0 * eta + (9.0 / 4.0 + 4.0 / math.pi) * eta**2 * g), rtol=1e-14)
+    np.testing.assert_allclose(
+        theory.enskog_thermal_conductivity(eta)
+        - theory.enskog_thermal_conductivity(eta, sonine=False),
+        (theory.SONINE_CONDUCTIVITY - 1.0) * lam1 * (1.0 + 1.5 * eta * g) ** 2 / g,
+        rtol=1e-12)
+    zeta = theory.enskog_bulk_viscosity(eta)
+    np.testing.assert_allclose(zeta, 16.0 / math.pi * eta**2 * g
+                               * theory.dilute_viscosity(sonine=False), rtol=1e-14)
+    np.testing.assert_allclose(zeta, 4.0 / math.pi * eta**2 * g * lam1, rtol=1e-14)
+    n = theory.number_density(eta)
+    np.testing.assert_allclose(
+        theory.enskog_diffusion(eta),
+        theory.SONINE_DIFFUSION / (2.0 * n * math.sqrt(math.pi)) / g, rtol=1e-14)
+    assert theory.enskog_diffusion(0.3, g_contact=1.0, sonine=False) == pytest.approx(
+        1.0 / (2.0 * theory.number_density(0.3) * math.sqrt(math.pi)), rel=1e-14)
+    kt, m, d = 4.0, 2.0, 0.5
+    assert theory.enskog_thermal_conductivity(0.3, temperature=kt, mass=m, diameter=d) == \
+        pytest.approx(theory.enskog_thermal_conductivity(0.3) * math.sqrt(kt / m) / d,
+                      rel=1e-14)
+    assert theory.enskog_bulk_viscosity(0.3, temperature=kt, mass=m, diameter=d) == \
+        pytest.approx(theory.enskog_bulk_viscosity(0.3) * math.sqrt(kt * m) / d, rel=1e-14)
+    assert theory.enskog_diffusion(0.3, temperature=kt, mass=m, diameter=d) == \
+        pytest.approx(theory.enskog_diffusion(0.3) * math.sqrt(kt / m) * d, rel=1e-14)
+    with pytest.raises(ValueError, match="g_contact"):
+        theory.enskog_diffusion(0.3, g_contact=-1.0)
+
+
+def test_long_time_tail_amplitude():
+    """``kT / (8 pi m n (D + nu))``: for the viscosity ``eta + m n D``."""
+    a = theory.long_time_tail(0.5, 0.4, 0.3, temperature=2.0, mass=3.0)
+    assert a == pytest.approx(2.0 / (8.0 * math.pi * (0.5 + 3.0 * 0.3 * 0.4)), rel=1e-15)
+    with pytest.raises(ValueError, match="diffusion"):
+        theory.long_time_tail(0.5, -0.4, 0.3)

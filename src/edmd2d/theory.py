@@ -79,6 +79,13 @@ __all__ = [
     "SONINE_VISCOSITY",
     "dilute_viscosity",
     "enskog_viscosity",
+    "SONINE_CONDUCTIVITY",
+    "SONINE_DIFFUSION",
+    "dilute_thermal_conductivity",
+    "enskog_thermal_conductivity",
+    "enskog_bulk_viscosity",
+    "enskog_diffusion",
+    "long_time_tail",
     "maxwell_boltzmann_speed_pdf",
 ]
 
@@ -506,6 +513,14 @@ def enskog_viscosity(eta: ArrayLike, g_contact: ArrayLike | None = None,
     ...       / dilute_viscosity(sonine=False), 4)   # Gass: 1/g + 2 eta + (1 + 8/pi) eta^2 g
     1.7299
     """
+    e, g = _enskog_args(eta, g_contact)
+    first = dilute_viscosity(temperature, mass, diameter, sonine=False)
+    eta0 = first * (SONINE_VISCOSITY if sonine else 1.0)
+    return _out(eta0 * (1.0 + e * g) ** 2 / g + (8.0 / math.pi) * e * e * g * first)
+
+
+def _enskog_args(eta, g_contact):
+    """The packing fraction and the contact value (default Henderson's) as arrays."""
     e = _eta(eta)
     # (Henderson's contact value in the form that stays exact as eta -> 0, where
     # (Z - 1) / (2 eta) would cancel.)
@@ -513,9 +528,190 @@ def enskog_viscosity(eta: ArrayLike, g_contact: ArrayLike | None = None,
          else np.asarray(g_contact, dtype=float))
     if not np.all(g > 0):
         raise ValueError(f"g_contact must be > 0, got {g_contact!r}")
+    return e, g
+
+
+#: The dilute thermal conductivity of hard disks over its first Sonine
+#: approximation: the converged Chapman-Enskog value (see the module notes).
+SONINE_CONDUCTIVITY = 1.0297240419
+#: The dilute self-diffusion coefficient of hard disks over its first Sonine
+#: approximation, converged.
+SONINE_DIFFUSION = 1.0270940111
+
+
+def dilute_thermal_conductivity(temperature: float = 1.0, mass: float = 1.0,
+                                diameter: float = 1.0, sonine: bool = True) -> float:
+    """Thermal conductivity of a dilute gas of hard disks (Chapman-Enskog, 2D, ``k_B =
+    1``): ``lambda_0 = f (2 / sigma) sqrt(kT / (pi m))``, ``f = SONINE_CONDUCTIVITY``
+    (converged) or 1 (the first Sonine approximation, ``4 eta_1 / m``: ``d (d + 2) /
+    (2 (d - 1))`` times ``eta_1 / m`` in ``d`` dimensions).
+
+    Parameters
+    ----------
+    temperature, mass, diameter : float, default 1.0
+        ``kT``, ``m``, ``sigma``, each > 0.
+    sonine : bool, default True
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(dilute_thermal_conductivity(sonine=False), 6)   # 2 / sqrt(pi)
+    1.128379
+    >>> round(dilute_thermal_conductivity(), 6)
+    1.161919
+    """
+    kt = as_positive_float("temperature", temperature)
+    m = as_positive_float("mass", mass)
+    sigma = as_positive_float("diameter", diameter)
+    first = 2.0 * math.sqrt(kt / (math.pi * m)) / sigma
+    return first * (SONINE_CONDUCTIVITY if sonine else 1.0)
+
+
+def enskog_thermal_conductivity(eta: ArrayLike, g_contact: ArrayLike | None = None,
+                                temperature: float = 1.0, mass: float = 1.0,
+                                diameter: float = 1.0,
+                                sonine: bool = True) -> float | np.ndarray:
+    """Thermal conductivity of hard disks in Enskog's theory (2D, ``k_B = 1``):
+    ``lambda_E = lambda_0 (1 + 3 eta g / 2)^2 / g + (4 / pi) eta^2 g lambda_1``.
+
+    ``lambda_0`` is :func:`dilute_thermal_conductivity` (converged, or ``lambda_1``
+    with ``sonine=False``, which gives ``lambda_1 [1 / g + 3 eta + (9 / 4 + 4 / pi)
+    eta^2 g]``); the last term, the collisional transfer of the local equilibrium,
+    takes no Sonine correction, as for :func:`enskog_viscosity`.
+
+    Parameters
+    ----------
+    eta : float or array_like
+        Packing fraction, in ``(0, 1)``.
+    g_contact : float or array_like, optional
+        The pair distribution at contact; default Henderson's.
+    temperature, mass, diameter : float, default 1.0
+    sonine : bool, default True
+
+    Returns
+    -------
+    float or ndarray
+
+    Examples
+    --------
+    >>> round(enskog_thermal_conductivity(0.3, sonine=False)
+    ...       / dilute_thermal_conductivity(sonine=False), 4)
+    2.0262
+    """
+    e, g = _enskog_args(eta, g_contact)
+    first = dilute_thermal_conductivity(temperature, mass, diameter, sonine=False)
+    lam0 = first * (SONINE_CONDUCTIVITY if sonine else 1.0)
+    return _out(lam0 * (1.0 + 1.5 * e * g) ** 2 / g + (4.0 / math.pi) * e * e * g * first)
+
+
+def enskog_bulk_viscosity(eta: ArrayLike, g_contact: ArrayLike | None = None,
+                          temperature: float = 1.0, mass: float = 1.0,
+                          diameter: float = 1.0) -> float | np.ndarray:
+    """Bulk viscosity of hard disks in Enskog's theory (2D):
+    ``zeta_E = (16 / pi) eta^2 g eta_1``, ``eta_1`` the first Sonine approximation of
+    :func:`dilute_viscosity`.  It is collisional transfer of the local equilibrium
+    alone (a dilute gas of hard disks has none), so no Sonine correction enters.
+
+    Parameters
+    ----------
+    eta : float or array_like
+        Packing fraction, in ``(0, 1)``.
+    g_contact : float or array_like, optional
+        The pair distribution at contact; default Henderson's.
+    temperature, mass, diameter : float, default 1.0
+
+    Returns
+    -------
+    float or ndarray
+
+    Examples
+    --------
+    >>> round(enskog_bulk_viscosity(0.3), 4)
+    0.2292
+    """
+    e, g = _enskog_args(eta, g_contact)
     first = dilute_viscosity(temperature, mass, diameter, sonine=False)
-    eta0 = first * (SONINE_VISCOSITY if sonine else 1.0)
-    return _out(eta0 * (1.0 + e * g) ** 2 / g + (8.0 / math.pi) * e * e * g * first)
+    return _out((16.0 / math.pi) * e * e * g * first)
+
+
+def enskog_diffusion(eta: ArrayLike, g_contact: ArrayLike | None = None,
+                     temperature: float = 1.0, mass: float = 1.0, diameter: float = 1.0,
+                     sonine: bool = True) -> float | np.ndarray:
+    """Self-diffusion coefficient of hard disks in Enskog's theory (2D):
+    ``D_E = D_0 / g`` with the dilute ``D_0 = f (1 / (2 n sigma)) sqrt(kT / (pi m))``
+    at the number density ``n = 4 eta / (pi sigma^2)``, ``f = SONINE_DIFFUSION``
+    (converged) or 1 (first Sonine approximation).
+
+    ``kT / (m D_E)`` with ``f = 1`` is the exact initial decay rate of the velocity
+    autocorrelation (:mod:`edmd2d.transport`).  In 2D the measured ``D`` exceeds
+    ``D_E`` by a term that grows with the logarithm of the time window and of the
+    box (the long-time tail, :doc:`/transport`).
+
+    Parameters
+    ----------
+    eta : float or array_like
+        Packing fraction, in ``(0, 1)``.
+    g_contact : float or array_like, optional
+        The pair distribution at contact; default Henderson's.
+    temperature, mass, diameter : float, default 1.0
+    sonine : bool, default True
+
+    Returns
+    -------
+    float or ndarray
+
+    Examples
+    --------
+    >>> round(enskog_diffusion(0.05), 4)
+    4.1993
+    """
+    e, g = _enskog_args(eta, g_contact)
+    kt = as_positive_float("temperature", temperature)
+    m = as_positive_float("mass", mass)
+    sigma = as_positive_float("diameter", diameter)
+    n = 4.0 * e / (math.pi * sigma * sigma)
+    first = math.sqrt(kt / (math.pi * m)) / (2.0 * n * sigma)
+    return _out(first * (SONINE_DIFFUSION if sonine else 1.0) / g)
+
+
+def long_time_tail(viscosity: float, diffusion: float, density: float,
+                   temperature: float = 1.0, mass: float = 1.0) -> float:
+    """The amplitude ``A = kT / (8 pi m n (D + nu))``, ``nu = eta / (m n)``, of the
+    long-time tail of hard disks (mode coupling: Ernst, Hauge and van Leeuwen): the
+    velocity autocorrelation per axis decays as ``<v_x(0) v_x(t)> ~ A / t``, so the
+    self-diffusion coefficient grows as ``A ln t`` with the time window and, in a
+    periodic box whose longest waves cut the tail off, as ``A ln N`` with the number
+    of disks at a fixed density (:doc:`/transport`).  The viscosity that enters is
+    ``eta + m n D``, not ``eta`` alone.
+
+    Parameters
+    ----------
+    viscosity : float
+        The shear viscosity ``eta``, > 0.
+    diffusion : float
+        The self-diffusion coefficient ``D``, > 0.
+    density : float
+        The number density ``n``, > 0.
+    temperature, mass : float, default 1.0
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(long_time_tail(0.4962, 0.5525, number_density(0.3)), 4)
+    0.0563
+    """
+    eta = as_positive_float("viscosity", viscosity)
+    d = as_positive_float("diffusion", diffusion)
+    n = as_positive_float("density", density)
+    kt = as_positive_float("temperature", temperature)
+    m = as_positive_float("mass", mass)
+    return kt / (8.0 * math.pi * (eta + m * n * d))
 
 
 def haff_temperature(restitution: float, time: ArrayLike,

@@ -8,7 +8,7 @@
 """
 
 # (_compile_notice says on standard error when the engine is being compiled)
-from . import _compile_notice, checkpoint, models, operations, theory  # noqa: F401
+from . import _compile_notice, checkpoint, models, operations, theory, transport  # noqa: F401
 from ._version import __version__  # noqa: F401
 from .analysis import (
     hexatic_order,
@@ -32,7 +32,7 @@ __all__ = [
     "measure", "Measurement", "kinetic_temperature", "cooling", "Cooling", "models",
     "radial_distribution", "speed_distribution", "maxwell_boltzmann_test",
     "trajectory", "mean_squared_displacement", "hexatic_order",
-    "theory", "checkpoint", "operations",
+    "theory", "checkpoint", "operations", "transport",
     "random_packing", "contact_network", "contact_tolerance", "ContactNetwork",
     "random_gas", "compress", "Compression", "packing_fraction",
     "voronoi_cell_areas", "local_packing_fractions",

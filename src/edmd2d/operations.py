@@ -20,6 +20,10 @@ Operations here:
 - :class:`Profile`: density, packing fraction, flow velocity and granular temperature
   in slabs along an axis, sampled at each firing
   (:func:`edmd2d.measurements.profiles` is one run with one of them);
+- :class:`Transport`: the Einstein-Helfand moments, displacements and velocities
+  every ``dt``, for the viscosities, the thermal conductivity, self-diffusion and
+  the velocity autocorrelation (:func:`edmd2d.transport.transport` is one run with
+  one of them);
 - :class:`RecordTrajectory`: positions (and velocities) at each firing
   (:func:`edmd2d.analysis.trajectory` is one run with one of them);
 - :class:`RecordFrames`: a :class:`Snapshot` of everything a picture shows at each
@@ -67,10 +71,11 @@ from ._operations import (
 from .checkpoint import Checkpoint
 from .io.gsd import WriteGSD
 from .measurements import Measure, Profile
+from .transport import Transport
 
 __all__ = ["Trigger", "Every", "At", "Blocks", "Operation", "Callback", "Measure",
-           "Profile", "RecordTrajectory", "RecordFrames", "Snapshot", "WriteGSD", "Checkpoint",
-           "run", "WALL_CLOCK_SLICE"]
+           "Profile", "Transport", "RecordTrajectory", "RecordFrames", "Snapshot", "WriteGSD",
+           "Checkpoint", "run", "WALL_CLOCK_SLICE"]
 
 #: Collisions at most between two stops while a wall-clock trigger is active, so that
 #: ``Every(seconds=...)`` fires within a fraction of a second of its time.

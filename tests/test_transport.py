@@ -214,3 +214,22 @@ def test_a_result_needs_a_complete_block():
         op.result()
     with pytest.raises(ValueError, match="block=0.5 must be at least window"):
         Transport(dt=0.5, window=1.0, block=0.5)
+
+
+def test_a_sweep_task_measures_and_refuses_what_it_cannot(tmp_path):
+    from edmd2d import ensemble
+
+    row = ensemble.transport_task(
+        {"n": 100, "packing_fraction": 0.3, "duration": 24.0, "blocks": 4, "dt": 0.2,
+         "window": 2.0, "equilibrate": 2.0}, 5, tmp_path)
+    sim = ed.make_gas(100, 0.3, seed=5)
+    sim.advance(until=2.0)
+    c = transport(sim, 24.0, dt=0.2, window=2.0, blocks=4)
+    assert row["shear_viscosity"] == c.shear_viscosity  # the same gas as make_gas's
+    assert row["diffusion_error"] == c.diffusion_error[0] and row["time"] == sim.time
+    with pytest.raises(ValueError, match="needs window"):
+        ensemble.transport_task({"n": 100, "packing_fraction": 0.3, "duration": 24.0,
+                                 "dt": 0.2}, 5, tmp_path)
+    with pytest.raises(ValueError, match="periodic"):
+        ensemble.transport_task({"n": 100, "packing_fraction": 0.3, "duration": 24.0,
+                                 "dt": 0.2, "window": 2.0, "periodic": False}, 5, tmp_path)

@@ -38,6 +38,9 @@ it left in its ``workdir``.  A task that raises is recorded as failed, with its
 parameters, the error and its traceback, and the others go on; a resumed sweep runs
 failed tasks again (``retry_failed``).
 
+:func:`transport_task` measures transport coefficients (:mod:`edmd2d.transport`)
+over a grid of parameters the same way.
+
 :func:`eos_task` is a task for the common case: the equation of state of a gas
 (built as ``edmd2d run`` builds it, see :mod:`edmd2d.config`), equilibrated and
 measured in blocks, with checkpoints in its ``workdir`` from which a rerun continues
@@ -82,9 +85,10 @@ from ._store import (
     _State,
     load,
 )
+from ._transport import transport_task
 from ._workers import _call, _meta, _run_on_dask, _tasks, warm
 
-__all__ = ["sweep", "grid", "load", "eos_task", "warm", "SweepResult", "FORMAT",
+__all__ = ["sweep", "grid", "load", "eos_task", "transport_task", "warm", "SweepResult", "FORMAT",
            "VERSION", "CSV_FILE", "JSON_FILE", "TASKS_DIR"]
 
 # (The constants live with the files they name; their descriptions are here, where the

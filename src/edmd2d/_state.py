@@ -237,8 +237,11 @@ class EngineState:
         """For pickles, copies and checkpoints: without the views into ``S`` and ``E``,
         which a copy would turn into arrays of their own, detached from the copied
         tables (:meth:`__setstate__` rebuilds them), and without a stream's callback
-        and what it collected (a copy does not stream, and its log is empty)."""
+        and what it collected (a copy does not stream, and its log is empty), nor the
+        sums of the Einstein-Helfand moments (no ``Transport`` samples a copy: they
+        belong to the one that runs on the original)."""
         state = dict(vars(self))
+        state["helfand_sums"] = None
         for name in self.ROW_VIEWS:
             del state[name]
         for name in ("listener", "recorded"):

@@ -17,7 +17,7 @@ the pair at contact.  Taking ``d`` at contact, the nearest image, rather than th
 difference of unwrapped positions, is what defines the moments in a periodic box:
 with unwrapped positions a pair meeting across the boundary would jump the moment
 by a box length times the impulse, a random walk of its own that would add to the
-coefficient.  The engine keeps the sums while a :class:`Transport` operation runs,
+coefficient.  The engine keeps the sums while a :class:`~edmd2d.transport.Transport` operation runs,
 at no cost otherwise.
 
 The self-diffusion coefficient comes from the mean squared displacement of the
@@ -56,7 +56,7 @@ _WHOLE = 1e-9
 
 @dataclass(frozen=True)
 class TransportCoefficients:
-    """Transport coefficients of an equilibrium run (:func:`transport`,
+    """Transport coefficients of an equilibrium run (:func:`~edmd2d.transport.transport`,
     :meth:`Transport.result`), each with the standard error of its mean over the
     blocks (``nan`` with fewer than two blocks).
 
@@ -187,7 +187,8 @@ def _check_equilibrium(sim: Simulation) -> None:
 
 class Transport(Operation):
     """Sample the Einstein-Helfand moments, the unwrapped centres and the velocities
-    every ``dt`` of a run, for :class:`TransportCoefficients` (see the module notes).
+    every ``dt`` of a run, for :class:`~edmd2d.transport.TransportCoefficients` (see
+    the module notes).
 
     The moments themselves are exact (the engine sums them over every flight and
     collision while the operation runs); ``dt`` only sets the time windows at which
@@ -208,7 +209,10 @@ class Transport(Operation):
         The time origins per block, a whole multiple of ``dt``, at least ``window``
         (ten times as long or more keeps the blocks nearly independent).
     fit : (float, float), default (0.5, 1.0)
-        The windows to fit the slopes over, as fractions of ``window``.
+        The windows to fit the slopes over, as fractions of ``window`` (at least two
+        windows, from ``dt`` on).
+    blocks : int, optional
+        Use at most this many blocks (default: every complete one).
 
     Examples
     --------
@@ -223,18 +227,16 @@ class Transport(Operation):
     """
 
     def __init__(self, *, dt: float, window: float, block: float,
-                 fit: tuple[float, float] = (0.5, 1.0)) -> None:
+                 fit: tuple[float, float] = (0.5, 1.0), blocks: int | None = None) -> None:
         self.dt = as_positive_float("dt", dt)
         super().__init__(Every(dt=self.dt))
         self.lags = _whole("window", as_positive_float("window", window), self.dt)
         self.per_block = _whole("block", as_positive_float("block", block), self.dt)
         if self.per_block < self.lags:
             raise ValueError(f"block={block!r} must be at least window={window!r}")
-        lo, hi = (float(f) for f in fit)
-        if not 0.0 <= lo < hi <= 1.0 or round(lo * self.lags) == round(hi * self.lags):
-            raise ValueError(f"fit={fit!r} must be two fractions 0 <= lo < hi <= 1 of the "
-                             f"window apart by at least one sample")
-        self.fit = (lo, hi)
+        self.fit = _fit(fit)
+        self._fitted = _fitted(self.fit, self.lags, window)
+        self.max_blocks = None if blocks is None else as_count("blocks", blocks, minimum=1)
         self._sim: Simulation | None = None
         self._time = math.nan  # of the last sample
         self._moments: list[np.ndarray] = []  # one row of 5 per sample
@@ -246,6 +248,8 @@ class Transport(Operation):
         self._count: list[np.ndarray] = []  # origins per block and lag, (L + 1,)
         self._species: np.ndarray | None = None
         self._per_species: np.ndarray | None = None
+        self._onehot_species: np.ndarray | None = None
+        self._temperatures: list[float] = []  # kT at each sample
         self._meta: dict = {}
 
     @property
@@ -282,7 +286,7 @@ class Transport(Operation):
         if self._sim is not None:
             if sim is not self._sim:
                 raise ValueError("this Transport samples another simulation")
-            if sim.time != self._time:
+            if abs(sim.time - self._time) > 1e-12 * max(1.0, abs(self._time)):
                 raise ValueError(f"this Transport stopped at t={self._time!r}; a run "
                                  f"starting at t={sim.time!r} cannot go on with it")
         if state.helfand_sums is None:
@@ -299,13 +303,15 @@ class Transport(Operation):
         self._species = species
         kinds = int(species.max()) + 1
         self._per_species = np.bincount(species, minlength=kinds).astype(float)
+        self._onehot_species = np.zeros((sim.n, kinds))
+        self._onehot_species[np.arange(sim.n), species] = 1.0
         mass, rad = sim.masses, sim.radii
         area = sim.box.width * sim.box.height
         self._meta = dict(
             n=sim.n, area=area, density=sim.n / area,
             packing_fraction=float(np.pi * np.sum(rad * rad) / area),
-            mixture=bool(np.ptp(mass) > 0 or np.ptp(rad) > 0 or kinds > 1),
-            t0=sim.time, masses=mass)
+            # (Species labels alone make no mixture: equal disks have one heat flux.)
+            mixture=bool(np.ptp(mass) > 0 or np.ptp(rad) > 0))
         self._base = -state.helfand_moments()
         lags = self.lags
         self._ring_r = np.empty((lags + 1, sim.n, 2))
@@ -327,11 +333,12 @@ class Transport(Operation):
             self._sim._state.helfand_sums = None
 
     def _sample(self, sim: Simulation) -> None:
+        from .measurements import kinetic_temperature
+
         assert self._ring_r is not None and self._ring_v is not None
         state = sim._state
         s = len(self._moments)
-        self._moments.append(state.helfand_moments() + self._base)
-        self._time = sim.time
+        moments = state.helfand_moments() + self._base
         lags = self.lags
         r = sim.unwrapped_positions
         v = sim.velocities
@@ -344,7 +351,8 @@ class Transport(Operation):
         d = r[None] - self._ring_r[slots]
         sq = np.einsum("kia,kia->ki", d, d)
         vv = np.einsum("kia,ia->ki", self._ring_v[slots], v)
-        onehot = self._onehot()
+        onehot = self._onehot_species
+        assert onehot is not None
         sq_s = sq @ onehot
         vv_s = vv @ onehot
         blocks = (s - ks) // self.per_block
@@ -357,12 +365,10 @@ class Transport(Operation):
             self._msd[b][ks[sel]] += sq_s[sel]
             self._vv[b][ks[sel]] += vv_s[sel]
             self._count[b][ks[sel]] += 1.0
-
-    def _onehot(self) -> np.ndarray:
-        assert self._species is not None and self._per_species is not None
-        out = np.zeros((len(self._species), len(self._per_species)))
-        out[np.arange(len(self._species)), self._species] = 1.0
-        return out
+        # (Last: a sample counts, and a later run may go on from it, once it is whole.)
+        self._temperatures.append(kinetic_temperature(sim))
+        self._moments.append(moments)
+        self._time = sim.time
 
     def result(self) -> TransportCoefficients:
         """The coefficients over the complete blocks so far.
@@ -382,6 +388,8 @@ class Transport(Operation):
         # A block b is complete once its last origin (b + 1) per - 1 has its longest
         # window: (b + 1) per - 1 + lags <= samples - 1.
         complete = max((samples - lags) // per, 0)
+        if self.max_blocks is not None:
+            complete = min(complete, self.max_blocks)
         if complete < 1:
             raise ValueError(
                 f"no complete block yet: a block needs {per * self.dt:g} of time origins "
@@ -392,11 +400,11 @@ class Transport(Operation):
         tau = dt * np.arange(1, lags + 1)
         G = np.array(self._moments)
         duration = (samples - 1) * dt
-        area, kt = meta["area"], self._temperature()
+        # (Constant in an elastic run, to rounding; the mean of the samples.)
+        area, kt = meta["area"], float(np.mean(self._temperatures))
         # The mean pressure: the trace of the momentum flux's integral over the run.
         pressure = float((G[-1, 0] + G[-1, 1] - G[0, 0] - G[0, 1]) / (2.0 * area * duration))
-        lo = max(round(self.fit[0] * lags), 1)
-        hi = round(self.fit[1] * lags)
+        lo, hi = self._fitted
         shear = np.empty((complete, lags))
         bulk = np.empty((complete, lags))
         heat = np.empty((complete, lags))
@@ -409,12 +417,16 @@ class Transport(Operation):
                 trace = 0.5 * (dG[:, 0] + dG[:, 1]) - area * pressure * k * dt
                 bulk[b, k - 1] = np.mean(trace ** 2)
                 heat[b, k - 1] = 0.5 * np.mean(dG[:, 3] ** 2 + dG[:, 4] ** 2)
+        # The mean pressure is that of the same run: over a window tau it takes out
+        # tau / duration of the moment's variance, exactly for a random walk.
+        bulk /= 1.0 - tau / duration
         per_species = self._per_species
         assert per_species is not None  # (set with the first sample)
-        msd = np.array([self._msd[b][1:] / self._count[b][1:, None] for b in range(complete)])
-        msd /= per_species[None, None, :]
-        vv = np.array([self._vv[b] / self._count[b][:, None] for b in range(complete)])
-        vv /= 2.0 * per_species[None, None, :]
+        with np.errstate(invalid="ignore", divide="ignore"):  # (labels without disks: nan)
+            msd = np.array([self._msd[b][1:] / self._count[b][1:, None]
+                            for b in range(complete)]) / per_species[None, None, :]
+            vv = np.array([self._vv[b] / self._count[b][:, None]
+                           for b in range(complete)]) / (2.0 * per_species[None, None, :])
 
         def slope(m):  # (blocks, lags) -> (blocks,): fitted over windows lo .. hi
             x = tau[lo - 1:hi]
@@ -458,19 +470,37 @@ class Transport(Operation):
             diffusion_curve_error=d_curve_err,
             vacf_times=dt * np.arange(lags + 1), vacf=vacf, vacf_error=vacf_err)
 
-    def _temperature(self) -> float:
-        from .measurements import kinetic_temperature
-        assert self._sim is not None
-        return kinetic_temperature(self._sim)
+
+
+def _fit(fit) -> tuple[float, float]:
+    """``fit`` checked: two fractions ``0 <= lo < hi <= 1``."""
+    try:
+        lo, hi = (float(f) for f in fit)
+    except (TypeError, ValueError):
+        raise ValueError(f"fit={fit!r} must be two fractions (lo, hi) of the window") from None
+    if not 0.0 <= lo < hi <= 1.0:
+        raise ValueError(f"fit={fit!r} must be two fractions 0 <= lo < hi <= 1 of the window")
+    return lo, hi
+
+
+def _fitted(fit: tuple[float, float], lags: int, window: float) -> tuple[int, int]:
+    """The first and last window (in samples, from 1) of the slopes' fit: at least
+    two."""
+    lo, hi = max(round(fit[0] * lags), 1), round(fit[1] * lags)
+    if hi - lo < 1:
+        raise ValueError(f"fit={fit!r} of window={window!r} ({lags} windows of dt) leaves "
+                         f"fewer than two windows to fit a slope to: widen fit, or take "
+                         f"a longer window or a shorter dt")
+    return lo, hi
 
 
 def transport(sim: Simulation, duration: float, *, dt: float, window: float,
               blocks: int = 10, fit: tuple[float, float] = (0.5, 1.0),
               progress: _progress.ProgressArg = False) -> TransportCoefficients:
     """Run ``sim`` for ``duration`` and measure its transport coefficients (see the
-    module notes and :class:`Transport`).
+    module notes and :class:`~edmd2d.transport.Transport`).
 
-    The time origins are cut into ``blocks`` blocks of ``(duration - window) /
+    The time origins are cut into ``blocks`` blocks of ``(duration + dt - window) /
     blocks`` each, rounded down to whole samples.
 
     Parameters
@@ -478,7 +508,7 @@ def transport(sim: Simulation, duration: float, *, dt: float, window: float,
     sim : Simulation
         An elastic gas in a periodic box, at rest as a whole (advanced in place).
     duration : float
-        The simulated time to run, > 0.
+        The simulated time to run, a whole multiple of ``dt``.
     dt : float
         The time between samples, > 0.
     window : float
@@ -514,18 +544,19 @@ def transport(sim: Simulation, duration: float, *, dt: float, window: float,
     window = as_positive_float("window", window)
     blocks = as_count("blocks", blocks, minimum=1)
     lags = _whole("window", window, dt)
-    samples = int(math.floor(duration / dt * (1.0 + _WHOLE)))
-    per = (samples - lags) // blocks
+    steps = _whole("duration", duration, dt)
+    # (steps + 1 samples: origins 0 .. steps - lags have their longest window.)
+    per = (steps + 1 - lags) // blocks
     if per < lags:
         raise ValueError(
             f"window={window!r} is too long for duration={duration!r} in {blocks} blocks: "
             f"each block's origins must span at least the window (at most "
             f"window = duration / (blocks + 1) = {duration / (blocks + 1):.6g})")
-    op = Transport(dt=dt, window=window, block=per * dt, fit=fit)
+    op = Transport(dt=dt, window=window, block=per * dt, fit=fit, blocks=blocks)
     _check_equilibrium(sim)
     bar, owned = _progress.bar(progress, total=duration, unit="time", desc="transport")
     try:
-        run(sim, until=sim.time + samples * dt, operations=[op],
+        run(sim, until=sim.time + steps * dt, operations=[op],
             progress=bar if bar is not None else False)
     finally:
         if owned:

@@ -19,9 +19,8 @@ collisions/s of each, and of the ratio of each sheared turn to the plain turn be
 from __future__ import annotations
 
 import argparse
-import statistics
 
-from timing import collision_rate as rate
+from timing import alternating_rates, print_rates
 
 import edmd2d as ed
 
@@ -40,22 +39,10 @@ def main() -> None:
     for r in shear_rates:
         systems[f"rate {r:g}"] = ed.make_gas(n, 0.5, seed=1, thermostat=(1.0, 0.1),
                                              shear_rate=r)
-    for sim in systems.values():
-        sim.advance(collisions=3 * n)
-    per_turn = max(1, int(args.k * n))
-    rates: dict[str, list[float]] = {name: [] for name in systems}
-    for _ in range(args.reps):
-        for name, sim in systems.items():
-            rates[name].append(rate(sim, per_turn))
+    rates, per_turn = alternating_rates(systems, n, args.k, args.reps)
     print(f"N = {n}, packing 0.5, thermostat kT = 1 at 0.1 redraws per disk per unit "
           f"time, {args.reps} turns of {per_turn} collisions each")
-    for name, values in rates.items():
-        print(f"  {name:>10}: median {statistics.median(values) / 1e6:.3f} M coll/s "
-              f"(range {min(values) / 1e6:.3f}-{max(values) / 1e6:.3f})")
-    for name in list(systems)[1:]:
-        ratios = [b / a for a, b in zip(rates["no shear"], rates[name])]
-        print(f"  {name} / no shear: median {statistics.median(ratios):.3f} "
-              f"(range {min(ratios):.3f}-{max(ratios):.3f})")
+    print_rates(rates, "no shear")
     for name, sim in systems.items():
         print(f"  {name:>10}: kT = {ed.kinetic_temperature(sim):.4f} at t = {sim.time:.1f}")
 

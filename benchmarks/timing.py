@@ -124,3 +124,32 @@ def run_for(step, seconds: float) -> tuple[int, float]:
         elapsed = time.perf_counter() - t0
         if elapsed >= seconds:
             return done, elapsed
+
+
+def alternating_rates(systems: dict, n: int, k: float, reps: int) -> tuple[dict, int]:
+    """Warm each simulation of ``systems`` (by name) up for ``3 n`` collisions, then
+    let them take ``reps`` turns at ``k n`` collisions each, one after another so that
+    the machine's drift hits all alike; returns each one's collisions/s per turn
+    (:func:`collision_rate`) and the collisions of a turn."""
+    for sim in systems.values():
+        sim.advance(collisions=3 * n)
+    per_turn = max(1, int(k * n))
+    rates: dict[str, list[float]] = {name: [] for name in systems}
+    for _ in range(reps):
+        for name, sim in systems.items():
+            rates[name].append(collision_rate(sim, per_turn))
+    return rates, per_turn
+
+
+def print_rates(rates: dict, baseline: str, width: int = 10) -> None:
+    """Print the median and range of each entry of ``rates`` (collisions/s per
+    turn), and of the ratio of each other entry's turns to those of ``baseline``."""
+    for name, values in rates.items():
+        print(f"  {name:>{width}}: median {statistics.median(values) / 1e6:.3f} M coll/s "
+              f"(range {min(values) / 1e6:.3f}-{max(values) / 1e6:.3f})")
+    for name in rates:
+        if name == baseline:
+            continue
+        ratios = [b / a for a, b in zip(rates[baseline], rates[name])]
+        print(f"  {name} / {baseline}: median {statistics.median(ratios):.3f} "
+              f"(range {min(ratios):.3f}-{max(ratios):.3f})")

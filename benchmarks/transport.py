@@ -23,7 +23,7 @@ import argparse
 import statistics
 import time
 
-from timing import collision_rate as rate
+from timing import alternating_rates, print_rates
 
 import edmd2d as ed
 from edmd2d.transport import Transport
@@ -41,21 +41,10 @@ def main() -> None:
     moments = ed.make_gas(n, 0.3, seed=1)
     op = Transport(dt=1.0, window=float(args.lags), block=float(args.lags))
     op.begin(moments)  # (the engine's sums on, as during a run with op)
-    systems = {"without": plain, "with moments": moments}
-    for sim in systems.values():
-        sim.advance(collisions=3 * n)
-    per_turn = max(1, int(args.k * n))
-    rates: dict[str, list[float]] = {name: [] for name in systems}
-    for _ in range(args.reps):
-        for name, sim in systems.items():
-            rates[name].append(rate(sim, per_turn))
+    rates, per_turn = alternating_rates({"without": plain, "with moments": moments}, n,
+                                        args.k, args.reps)
     print(f"N = {n}, packing 0.3, {args.reps} turns of {per_turn} collisions each")
-    for name, values in rates.items():
-        print(f"  {name:>13}: median {statistics.median(values) / 1e6:.3f} M coll/s "
-              f"(range {min(values) / 1e6:.3f}-{max(values) / 1e6:.3f})")
-    ratios = [b / a for a, b in zip(rates["without"], rates["with moments"])]
-    print(f"  with / without: median {statistics.median(ratios):.3f} "
-          f"(range {min(ratios):.3f}-{max(ratios):.3f})")
+    print_rates(rates, "without", width=13)
     costs = []
     for _ in range(2 * args.lags):
         start = time.process_time()

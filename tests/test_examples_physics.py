@@ -33,6 +33,8 @@ def load(name):
     ("sheared_fluid", {"N": 200, "PACKINGS": (0.3,), "RATES": (0.02,),
                        "COLLISIONS_PER_DISK": 200}),
     ("granular_shear", {"N": 200, "RATES": (0.5, 1.0), "SETTLE": 10.0, "WINDOW": 20.0}),
+    ("transport_coefficients", {"N": 64, "DURATION": 400.0,
+                                "WINDOWS": {0.1: 10.0, 0.3: 4.0}, "TAIL_WINDOW": 10.0}),
 ])
 def test_example_writes_its_figure(name, small, tmp_path, capsys):
     module = load(name)

@@ -30,7 +30,7 @@ LAYERS = [
      "_state"},
     {"measurements"},
     {"simulation"},
-    {"analysis", "compress", "checkpoint", "io"},
+    {"analysis", "compress", "checkpoint", "io", "transport"},
     {"contacts"},
     {"builders"},
     {"operations", "viz", "config", "_runs"},

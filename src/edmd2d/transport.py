@@ -42,8 +42,10 @@ import numpy as np
 
 from . import progress as _progress
 from ._engine import helfand as _helfand
+from ._jit import njit
 from ._operations import Every, Operation, run
 from ._validate import as_count, as_positive_float
+from .measurements import kinetic_temperature
 
 if TYPE_CHECKING:
     from .simulation import Simulation
@@ -248,7 +250,6 @@ class Transport(Operation):
         self._count: list[np.ndarray] = []  # origins per block and lag, (L + 1,)
         self._species: np.ndarray | None = None
         self._per_species: np.ndarray | None = None
-        self._onehot_species: np.ndarray | None = None
         self._temperatures: list[float] = []  # kT at each sample
         self._meta: dict = {}
 
@@ -299,12 +300,10 @@ class Transport(Operation):
             self._base = self._moments[-1] - state.helfand_moments()
             return
         self._sim = sim
-        species = sim.species
+        species = np.ascontiguousarray(sim.species, dtype=np.int64)
         self._species = species
         kinds = int(species.max()) + 1
         self._per_species = np.bincount(species, minlength=kinds).astype(float)
-        self._onehot_species = np.zeros((sim.n, kinds))
-        self._onehot_species[np.arange(sim.n), species] = 1.0
         mass, rad = sim.masses, sim.radii
         area = sim.box.width * sim.box.height
         self._meta = dict(
@@ -333,8 +332,6 @@ class Transport(Operation):
             self._sim._state.helfand_sums = None
 
     def _sample(self, sim: Simulation) -> None:
-        from .measurements import kinetic_temperature
-
         assert self._ring_r is not None and self._ring_v is not None
         state = sim._state
         s = len(self._moments)
@@ -346,20 +343,15 @@ class Transport(Operation):
         self._ring_r[slot] = r
         self._ring_v[slot] = v
         # Every origin o = s - k (k = 0 .. lags) that has a sample adds its window k.
+        assert self._species is not None and self._per_species is not None
         ks = np.arange(min(s, lags) + 1)
-        slots = (s - ks) % (lags + 1)
-        d = r[None] - self._ring_r[slots]
-        sq = np.einsum("kia,kia->ki", d, d)
-        vv = np.einsum("kia,ia->ki", self._ring_v[slots], v)
-        onehot = self._onehot_species
-        assert onehot is not None
-        sq_s = sq @ onehot
-        vv_s = vv @ onehot
+        sq_s, vv_s = _windows(s, lags, self._ring_r, self._ring_v, r, v, self._species,
+                              len(self._per_species))
         blocks = (s - ks) // self.per_block
         for b in np.unique(blocks):
             while len(self._msd) <= b:
-                self._msd.append(np.zeros((lags + 1, onehot.shape[1])))
-                self._vv.append(np.zeros((lags + 1, onehot.shape[1])))
+                self._msd.append(np.zeros((lags + 1, len(self._per_species))))
+                self._vv.append(np.zeros((lags + 1, len(self._per_species))))
                 self._count.append(np.zeros(lags + 1))
             sel = blocks == b
             self._msd[b][ks[sel]] += sq_s[sel]
@@ -470,6 +462,27 @@ class Transport(Operation):
             diffusion_curve_error=d_curve_err,
             vacf_times=dt * np.arange(lags + 1), vacf=vacf, vacf_error=vacf_err)
 
+
+
+@njit
+def _windows(s, lags, ring_r, ring_v, r, v, species, kinds):
+    """For sample ``s`` (centres ``r``, velocities ``v``) and each earlier sample ``s -
+    k`` still in the rings (``k = 0 .. min(s, lags)``, ring slot ``(s - k) % (lags +
+    1)``), the squared displacements and the products ``v(s - k) . v(s)`` summed over
+    the disks of each species: two arrays ``(min(s, lags) + 1, kinds)``.  (One pass
+    over the rings, reading each once: the cost of a sample is this memory traffic.)"""
+    top = min(s, lags)
+    sq = np.zeros((top + 1, kinds))
+    vv = np.zeros((top + 1, kinds))
+    for k in range(top + 1):
+        slot = (s - k) % (lags + 1)
+        for i in range(r.shape[0]):
+            dx = r[i, 0] - ring_r[slot, i, 0]
+            dy = r[i, 1] - ring_r[slot, i, 1]
+            c = species[i]
+            sq[k, c] += dx * dx + dy * dy
+            vv[k, c] += ring_v[slot, i, 0] * v[i, 0] + ring_v[slot, i, 1] * v[i, 1]
+    return sq, vv
 
 
 def _fit(fit) -> tuple[float, float]:

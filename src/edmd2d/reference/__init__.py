@@ -9,10 +9,10 @@ only the value objects :class:`~edmd2d.Box` and :class:`~edmd2d.Wall` are common
 the static test of whether a group of slow disks holds itself up (a linear program in
 ``edmd2d._balance``, tested on its own).
 
-Collisions may be inelastic.  The disks are smooth: a collision changes only the normal
-component of the relative velocity (of the disk's velocity, at a wall), which becomes
-``-e`` times itself, with a coefficient of restitution ``e`` for each pair of species and
-``e_w`` for all walls.  The kinetic energy lost, ``(1 - e**2)/2 * mu * vn**2`` per
+Collisions may be inelastic.  By default the disks are smooth: a collision changes only
+the normal component of the relative velocity (of the disk's velocity, at a wall),
+which becomes ``-e`` times itself, with a coefficient of restitution ``e`` for each pair
+of species and ``e_w`` for all walls.  The kinetic energy lost, ``(1 - e**2)/2 * mu * vn**2`` per
 collision with normal velocity ``vn`` and reduced mass ``mu`` (the disk's own mass
 against a wall or an immovable disk), is added up in ``dissipated``.  The TC model of
 Luding and McNamara (1998) keeps inelastic collapse away: a collision is elastic if one
@@ -37,10 +37,15 @@ comes back as its image, with that image's velocity.  The search tries the slidi
 images, and the collision rules act on them, as on any periodic image; tallies of the
 collisional virial and of the kinetic stress over the flights give the shear stress.
 
-The code comes in five parts: the contact-time oracles (``_times.py``), the search for
+Rough disks (``tangential_restitution``, ``friction``, ``inertia``,
+``angular_velocities`` and their ``wall_`` counterparts) also spin: a collision turns
+the tangential velocity of the contact points into ``-beta`` times itself, limited by
+Coulomb friction, exchanging energy between translation and rotation (``_rough.py``).
+
+The code comes in six parts: the contact-time oracles (``_times.py``), the search for
 the earliest contact (``_search.py``), the collision rules (``_rules.py``), the rules
-of disks at rest (``_resting.py``) and the event loop with the simulation's state
-(``_loop.py``).
+of disks at rest (``_resting.py``) and of rough disks (``_rough.py``), and the event
+loop with the simulation's state (``_loop.py``).
 
 Examples
 --------

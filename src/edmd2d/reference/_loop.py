@@ -101,6 +101,23 @@ class ReferenceSimulation(CollisionRules):
         code of an ordinary periodic box, bit for bit as without it.
     shear_offset : float, default 0.0
         The offset of the images above at ``time`` (under shear).
+    tangential_restitution : float, default -1.0
+        Rough disks (see ``_rough.py``): ``beta`` in ``[-1, 1]``, the factor by which a
+        disk-disk collision multiplies the tangential velocity of the contact points
+        with a minus sign (``-1``: smooth, the default; ``+1``: perfectly rough).  Not
+        with growth, ``resting`` or shear.
+    friction : float, default inf
+        Coulomb's coefficient ``mu >= 0``: the tangential impulse is at most ``mu``
+        times the normal one.
+    inertia : float or sequence, default 0.5
+        ``q`` in ``(0, 1]``, per disk or for all: the moment of inertia ``q m r^2``
+        (``1/2`` for a uniform disk).
+    angular_velocities : float or sequence, default 0.0
+        The disks' angular velocities at the start (counter-clockwise).
+    wall_tangential_restitution, wall_friction : float, optional
+        The same at box walls and wall segments (default: the disks' values).  A heated
+        wall sets the velocity only, and leaves the spin.  The thermostat draws the spin
+        too, at its temperature (a third Gaussian, after the two of the velocity).
 
     Attributes
     ----------
@@ -119,7 +136,8 @@ class ReferenceSimulation(CollisionRules):
     dissipated : float
         Kinetic energy lost in collisions so far.  ``kinetic_energy() + dissipated`` is
         constant to rounding, unless immovable disks move (pistons do work); under
-        gravity ``total_energy() + dissipated`` is.
+        gravity ``total_energy() + dissipated`` is.  For rough disks the rotational
+        energy joins in (``rotational_energy()``, and ``total_energy()`` holds it).
     gravity : tuple of float
         The acceleration ``(gx, gy)``.
     at_rest : list of bool
@@ -257,7 +275,11 @@ class ReferenceSimulation(CollisionRules):
                  wall_temperatures: dict | None = None,
                  thermostat: tuple[float, float] | None = None, seed: int | None = None,
                  growth: float | None = None, resting: Any = None,
-                 shear_rate: float = 0.0, shear_offset: float = 0.0) -> None:
+                 shear_rate: float = 0.0, shear_offset: float = 0.0,
+                 tangential_restitution: float = -1.0, friction: float = math.inf,
+                 inertia: PerDisk = 0.5, angular_velocities: PerDisk = 0.0,
+                 wall_tangential_restitution: float | None = None,
+                 wall_friction: float | None = None) -> None:
         n = len(positions)
         # (Required: its default only lets it follow masses as a keyword.)
         assert box is not None, "ReferenceSimulation needs a box"
@@ -318,6 +340,31 @@ class ReferenceSimulation(CollisionRules):
         self.flight_heat = [0.0, 0.0]
         self.heat_x = 0.0
         self.heat_y = 0.0
+        # Rough disks (_rough.py): the coefficients, and each disk's angular velocity,
+        # angle and moment of inertia q m r^2 (infinite for an immovable disk).
+        self.beta = float(tangential_restitution)
+        self.friction = float(friction)
+        self.wall_beta = self.beta if wall_tangential_restitution is None else float(
+            wall_tangential_restitution)
+        self.wall_friction = self.friction if wall_friction is None else float(wall_friction)
+        q = _per_disk(inertia, n)
+        for name, value in (("tangential_restitution", self.beta),
+                            ("wall_tangential_restitution", self.wall_beta)):
+            if not -1.0 <= value <= 1.0:
+                raise ValueError(f"{name} must lie in [-1, 1], got {value}")
+        for name, value in (("friction", self.friction), ("wall_friction", self.wall_friction)):
+            if not value >= 0.0:
+                raise ValueError(f"{name} must be >= 0, got {value}")
+        if not all(0.0 < x <= 1.0 for x in q):
+            raise ValueError(f"inertia must lie in (0, 1], got {inertia}")
+        self.inertia = [INF if math.isinf(m) else x * m * r * r
+                        for x, m, r in zip(q, self.m, self.r)]
+        self.w = [0.0 if math.isinf(m) else w
+                  for w, m in zip(_per_disk(angular_velocities, n), self.m)]
+        self.angle = [0.0] * n
+        self.rough = self.beta != -1.0 or self.wall_beta != -1.0 or any(self.w)
+        if self.rough and (self.growth or resting is not None or self.shear_rate != 0.0):
+            raise ValueError("rough disks do not combine with growth, resting or shear")
         # The box walls (0..3: x=0, x=width, y=0, y=height) each disk rests on.  An
         # inelastic model with tc > 0 holds a disk on a wall that gravity presses it
         # into once its next bounce would come within tc (and a disk that starts at
@@ -469,6 +516,10 @@ class ReferenceSimulation(CollisionRules):
         self.v[k] = [vx, vy]
         after = _dot(self._peculiar(k), self._peculiar(k))
         self.thermostat_energy += 0.5 * self.m[k] * (after - before)
+        if self.rough:  # (the spin too, at the same temperature)
+            spin = self._spin_energy(k)
+            self.w[k] = math.sqrt(self.thermostat[0] / self.inertia[k]) * self._gauss()
+            self.thermostat_energy += self._spin_energy(k) - spin
         self.resting[k].clear()
         self.redraws += 1
         self.events.append((self.time, "thermostat", k, -1))
@@ -501,6 +552,8 @@ class ReferenceSimulation(CollisionRules):
         gravity (movable disks; their velocities change by ``g dt``), and add the
         flight's integrals of the kinetic stress."""
         self._flight_stress(dt)
+        if self.rough:
+            self._turn(dt)
         if not self._accelerated():
             self.p = [[p[0] + dt * v[0], p[1] + dt * v[1]] for p, v in zip(self.p, self.v)]
             self.time += dt
@@ -802,7 +855,7 @@ class ReferenceSimulation(CollisionRules):
                     for m, p, k in zip(self.m, self.p, self.images) if not math.isinf(m))
 
     def total_energy(self) -> float:
-        """Kinetic plus potential energy.
+        """Kinetic plus potential energy (and, for rough disks, rotational).
 
         Returns
         -------
@@ -810,7 +863,18 @@ class ReferenceSimulation(CollisionRules):
             Constant in an elastic run (with immovable disks at rest), and
             ``total_energy() + dissipated`` constant otherwise.
         """
-        return self.kinetic_energy() + self.potential_energy()
+        total = self.kinetic_energy() + self.potential_energy()
+        return total + self.rotational_energy() if self.rough else total
+
+    @property
+    def angular_velocities(self) -> np.ndarray:
+        """Each disk's angular velocity (counter-clockwise), a copy."""
+        return np.array(self.w)
+
+    @property
+    def angles(self) -> np.ndarray:
+        """Each disk's angle, turned by ``w dt`` over each flight from 0 at the start."""
+        return np.array(self.angle)
 
 
 def _per_disk(value: PerDisk, n: int) -> list[float]:

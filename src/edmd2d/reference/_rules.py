@@ -17,10 +17,11 @@ from collections.abc import Callable
 from typing import Any
 
 from ._resting import RestingRules
+from ._rough import RoughRules
 from ._times import _dot
 
 
-class CollisionRules(RestingRules):
+class CollisionRules(RestingRules, RoughRules):
     """The collision rules, as methods of the simulation whose state they update.
 
     The state is the one ``ReferenceSimulation`` sets up: the per-disk lists ``p``,
@@ -147,6 +148,8 @@ class CollisionRules(RestingRules):
                 fi, fj = k * self.m[j] / mt, k * self.m[i] / mt
                 mu = self.m[i] * self.m[j] / mt  # the reduced mass
             e_before = 0.5 * self.m[i] * _dot(v, v) if fi else 0.0
+            if self.rough and fi:
+                e_before += self._spin_energy(i)
             self.v[i] = [v[0] - fi * vn * n[0], v[1] - fi * vn * n[1]]
             self.v[j] = [self.v[j][0] + fj * vn * n[0], self.v[j][1] + fj * vn * n[1]]
             # The kinetic energy of the relative normal motion, mu vn^2 / 2, times 1 - e^2.
@@ -157,9 +160,14 @@ class CollisionRules(RestingRules):
             self.virial_xx += d[0] * jx
             self.virial_yy += d[1] * jy
             self.virial_xy += d[0] * jy
+            if self.rough:
+                self._tangential_pair(i, j, n, -k * mu * vn, d,
+                                      self._recent(i) or self._recent(j))
             # The energy i gained, carried across d (the Helfand moment of heat).
             if fi:
                 de = 0.5 * self.m[i] * _dot(self.v[i], self.v[i]) - e_before
+                if self.rough:
+                    de += self._spin_energy(i)
                 self.heat_x += d[0] * de
                 self.heat_y += d[1] * de
             for disk in (i, j):
@@ -213,6 +221,10 @@ class CollisionRules(RestingRules):
             e = self._wall_restitution(i, vn)
             v[axis] = -e * vn
             self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
+            if self.rough:
+                inward = 1.0 if partner % 2 == 0 else -1.0
+                self._tangential_wall(i, (inward, 0.0) if axis == 0 else (0.0, inward),
+                                      (1.0 + e) * self.m[i] * abs(vn), self._recent(i))
             g_in = self._pressing(partner)
             rebound = abs(v[axis])
             # Rest: the rebound would bring the disk back in 2 v / |g_n| < tc.
@@ -251,6 +263,12 @@ class CollisionRules(RestingRules):
         self.v[i] = [v[0] - k * vn * n[0], v[1] - k * vn * n[1]]
         self._release(i)
         self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
+        if self.rough:
+            # (The normal from the segment to the disk's centre, for the tangent.)
+            if _dot(n, (p[0] - (a if part != "end" else b)[0],
+                        p[1] - (a if part != "end" else b)[1])) < 0.0:
+                n = (-n[0], -n[1])
+            self._tangential_wall(i, n, k * self.m[i] * abs(vn), self._recent(i))
         self._note(i)
         self.wall_collisions += 1
         if self.rest is not None:

@@ -108,6 +108,40 @@ def test_a_spinning_disk_on_a_rough_floor():
         assert total == pytest.approx(0.5 + 0.5 * 0.5 * 0.25 * 16.0, rel=1e-13)
 
 
+@pytest.mark.parametrize("a, b", [((2.0, 1.0), (8.0, 1.0)), ((8.0, 1.0), (2.0, 1.0))])
+def test_a_spinning_disk_on_a_rough_segment_either_way_round(a, b):
+    # The same bounce on a wall segment at y = 1 (given in either direction: its
+    # normal is taken towards the disk), and on the segment's end point.
+    ref = ReferenceSimulation([[5.0, 3.0]], [[0.0, -1.0]], 0.5, 1.0,
+                              box=ed.Box(10.0, 10.0, periodic=False),
+                              walls=[ed.Wall(a, b)], tangential_restitution=1.0,
+                              angular_velocities=4.0)
+    ref.advance(until=1.45)  # the bounce is at t = 1.5
+    v0, w0 = ref.velocities[0].copy(), ref.angular_velocities[0]
+    ref.advance(until=1.55)
+    assert ref.wall_collisions == 1
+    v1, w1 = ref.velocities[0], ref.angular_velocities[0]
+    assert -v1[0] - 0.5 * w1 == pytest.approx(-(-v0[0] - 0.5 * w0), rel=1e-12)
+    assert v1[1] == pytest.approx(-v0[1], rel=1e-12)
+    assert ref.kinetic_energy() + ref.rotational_energy() == pytest.approx(
+        0.5 + 0.5 * 0.5 * 0.25 * 16.0, rel=1e-13)
+    end = ReferenceSimulation([[1.8, 3.0]], [[0.0, -1.0]], 0.5, 1.0,
+                              box=ed.Box(10.0, 10.0, periodic=False), walls=[ed.Wall(a, b)],
+                              tangential_restitution=1.0, angular_velocities=4.0)
+    end.advance(until=1.4)
+    v0, w0 = end.velocities[0].copy(), end.angular_velocities[0]
+    end.advance(until=1.6)
+    v1, w1 = end.velocities[0], end.angular_velocities[0]
+    assert end.wall_collisions == 1
+    t_hit = end.events[-1][0]
+    centre = end.positions[0] - v1 * (1.6 - t_hit)
+    n = (centre - np.array([2.0, 1.0])) / 0.5  # (from the end point, at contact)
+    assert np.hypot(*n) == pytest.approx(1.0, rel=1e-9) and abs(n[0]) > 0.3
+    t = np.array([-n[1], n[0]])
+    assert v1 @ t - 0.5 * w1 == pytest.approx(-(v0 @ t - 0.5 * w0), rel=1e-9)
+    assert v1 @ n == pytest.approx(-(v0 @ n), rel=1e-9)
+
+
 def test_spins_alone_leave_a_smooth_gas_as_it_was():
     # Smooth (beta = -1) but spinning: the translation is bit for bit the smooth run's,
     # each angle turns at its own rate.

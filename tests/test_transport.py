@@ -86,6 +86,11 @@ def test_a_second_run_goes_on_where_the_first_stopped():
     split.advance(until=7.0)
     with pytest.raises(ValueError, match="stopped at t=6.0"):
         split.run(until=8.0, operations=[op2])
+    op3 = Transport(dt=0.5, window=1.0, block=2.0)
+    split.run(until=9.0, operations=[op3])
+    split.rescale_temperature(1.0)  # (an edit, even one that changes nothing)
+    with pytest.raises(ValueError, match="velocities were set since"):
+        split.run(until=10.0, operations=[op3])
     with pytest.raises(ValueError, match="another simulation"):
         ed.make_gas(200, 0.35, seed=1).run(until=1.0, operations=[op1])
 

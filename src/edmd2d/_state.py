@@ -192,6 +192,9 @@ class EngineState:
         # The sums of the Einstein-Helfand moments while they are kept (see
         # _engine/helfand.py; started and stopped by edmd2d.transport).
         self.helfand_sums: np.ndarray | None = None
+        # How many times positions or velocities were set from outside (what a
+        # measurement that goes on across runs must not miss).
+        self.edits = 0
         self.build_grid(pos, self.grid_diameter(2.0 * float(rad.max())), cell_size)
         with about("positions"):
             self.check_overlaps(pos, rad)
@@ -275,6 +278,7 @@ class EngineState:
         for name in ("shear_clock", "shear_slides", "shear_flights", "shear_idle"):
             state.setdefault(name, None)  # (saved before boxes could be sheared)
         state.setdefault("helfand_sums", None)  # (saved before the Helfand moments)
+        state.setdefault("edits", 0)
         state["log_capacity"] = 0  # (a copy does not stream)
         acc = state["acc"]
         if len(acc) < _layout.N_ACC:  # (saved before gravity could be changed)
@@ -441,6 +445,7 @@ class EngineState:
         the supports ``rest``; rebuild the grid and predict every disk afresh."""
         self.wake_all()
         self.sync_all()
+        self.edits += 1
         self.S[:, _layout.X:_layout.Y + 1] = pos[self.order]
         _layout.support_view(self.S)[:] = rest[self.order]
         self.image[:] = 0
@@ -454,6 +459,7 @@ class EngineState:
         time, with the supports ``rest``, and predict every disk afresh."""
         self.wake_all()
         self.sync_all()
+        self.edits += 1
         self.S[:, _layout.VX:_layout.VY + 1] = vel[self.order]
         _layout.support_view(self.S)[:] = rest[self.order]
         self.predict_all()  # every event and kept candidate is recomputed

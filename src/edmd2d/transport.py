@@ -199,7 +199,7 @@ class Transport(Operation):
     once every window from each of its origins has been sampled.
 
     A Transport used in a second run goes on where it stopped, if that run starts at
-    its last sample.
+    its last sample and no positions or velocities were set in between.
 
     Parameters
     ----------
@@ -241,6 +241,7 @@ class Transport(Operation):
         self.max_blocks = None if blocks is None else as_count("blocks", blocks, minimum=1)
         self._sim: Simulation | None = None
         self._time = math.nan  # of the last sample
+        self._edits = 0  # the state's count of edits at the last sample
         self._moments: list[np.ndarray] = []  # one row of 5 per sample
         self._base = np.zeros(5)  # added to the engine's moments (continuation)
         self._ring_r: np.ndarray | None = None
@@ -287,6 +288,9 @@ class Transport(Operation):
         if self._sim is not None:
             if sim is not self._sim:
                 raise ValueError("this Transport samples another simulation")
+            if state.edits != self._edits:
+                raise ValueError("the positions or velocities were set since this "
+                                 "Transport's last sample: start a new one")
             if abs(sim.time - self._time) > 1e-12 * max(1.0, abs(self._time)):
                 raise ValueError(f"this Transport stopped at t={self._time!r}; a run "
                                  f"starting at t={sim.time!r} cannot go on with it")
@@ -361,6 +365,7 @@ class Transport(Operation):
         self._temperatures.append(kinetic_temperature(sim))
         self._moments.append(moments)
         self._time = sim.time
+        self._edits = state.edits
 
     def result(self) -> TransportCoefficients:
         """The coefficients over the complete blocks so far.

@@ -128,14 +128,18 @@ def test_the_registry_refuses_a_taken_name_or_keyword(label):
 
 def test_the_built_in_families_and_their_keywords():
     assert list(physics.FAMILIES) == ["restitution", "gravity", "heated_walls",
-                                      "thermostat", "growth", "resting", "shear"]
+                                      "thermostat", "growth", "resting", "shear", "rough"]
     assert [kw for kw in physics.KEYWORDS] == ["restitution", "wall_restitution", "tc",
                                                "gravity", "wall_temperatures",
                                                "thermostat", "growth", "resting",
-                                               "rest_height", "shear_rate", "shear_offset"]
+                                               "rest_height", "shear_rate", "shear_offset",
+                                               "tangential_restitution", "friction",
+                                               "wall_tangential_restitution",
+                                               "wall_friction", "inertia",
+                                               "angular_velocities"]
     assert not physics.Resting.built_in  # (a family of the registry, checked always)
     assert physics.Resting.always
     for name in ("restitution", "wall_restitution", "tc", "gravity", "thermostat",
-                 "resting", "rest_height", "shear_rate"):
+                 "resting", "rest_height", "shear_rate", "tangential_restitution"):
         assert name in config._schema._model_schema()
     assert "growth" not in config._schema._model_schema()  # (compression is not a config run)

@@ -209,6 +209,22 @@ class EngineState:
                               if "resting" in families else None)
         self.rest_frozen = np.zeros((n, 2)) if "resting" in families else None
         self.rest_t_static = np.full(n, -np.inf) if "resting" in families else None
+        # Rough disks (the registered family "rough"): each disk's angular velocity,
+        # angle (at its own time) and inverse moment of inertia (see _engine/rough.py).
+        rough = families.get("rough")
+        self.rough_w = self.rough_angle = self.rough_t = self.rough_inv_inertia = None
+        if rough is not None:
+            with about("tangential_restitution"):
+                for name in ("growth", "gravity", "resting", "shear"):
+                    if (growth if name == "growth" else gravity if name == "gravity"
+                            else families.get(name)) is not None:
+                        raise ValueError(f"rough disks do not combine with {name}")
+            movable = np.isfinite(mass)
+            self.rough_w = np.where(movable, rough.spins, 0.0)
+            self.rough_angle = np.zeros(n)
+            self.rough_t = np.full(n, float(time))
+            inertia = rough.inertia * np.where(movable, mass, 1.0) * rad * rad
+            self.rough_inv_inertia = np.where(movable, 1.0 / inertia, 0.0)
         self.rest_check = self.first_rest_check()
         self.counts = np.zeros(_layout.N_COUNTS, np.int64)
         self.acc = np.zeros(_layout.N_ACC, np.float64)
@@ -279,6 +295,8 @@ class EngineState:
             state.setdefault(name, None)  # (saved before boxes could be sheared)
         state.setdefault("helfand_sums", None)  # (saved before the Helfand moments)
         state.setdefault("edits", 0)
+        for name in ("rough_w", "rough_angle", "rough_t", "rough_inv_inertia"):
+            state.setdefault(name, None)  # (saved before disks could spin)
         state["log_capacity"] = 0  # (a copy does not stream)
         acc = state["acc"]
         if len(acc) < _layout.N_ACC:  # (saved before gravity could be changed)
@@ -681,7 +699,24 @@ class EngineState:
             families.contact, families.heated, families.thermostat, families.uniforms,
             self.gravity_bundle(), self.growth_bundle(), rest, self.shear_bundle(),
             None if self.helfand_sums is None else _layout.Helfand(self.helfand_sums),
+            self.rough_bundle(),
         )
+
+    def rough_bundle(self):
+        """The engine's family of rough disks: ``None`` or a ``layout.Rough``."""
+        rough = self.families.get("rough")
+        if rough is None:
+            return None
+        w, angle, t, inv = self.rough_w, self.rough_angle, self.rough_t, self.rough_inv_inertia
+        assert w is not None and angle is not None and t is not None and inv is not None
+        return _layout.Rough(rough.beta, rough.friction, rough.wall_beta, rough.wall_friction,
+                             w, angle, t, inv)
+
+    def angles(self) -> np.ndarray:
+        """Rough disks: each disk's angle at :attr:`time`, in internal row order."""
+        bundle = self.rough_bundle()
+        assert bundle is not None
+        return bundle.angle + bundle.w * (self.time - bundle.t_angle)
 
     def rest_bundle(self):
         """The engine's family of disks at rest: ``None`` or a ``layout.Rest``."""
@@ -1017,6 +1052,9 @@ class EngineState:
                           rest_t_static=(None if self.rest_t_static is None
                                          else self.rest_t_static[perm]),
                           mass=self.mass[perm], order=self.order[perm],
+                          **{name: getattr(self, name)[perm] for name in
+                             ("rough_w", "rough_angle", "rough_t", "rough_inv_inertia")
+                             if getattr(self, name) is not None},
                           image=self.image[perm], head=head, model=model,
                           since_reorder=0)
 

@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
+import math
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -987,7 +988,146 @@ class Shear(Family):
         return {"shear_rate": np.array([self.rate], np.float64)}
 
 
-for _family in (Restitution, Gravity, HeatedWalls, Thermostat, Growth, Resting, Shear):
+@dataclass(frozen=True, eq=False)
+class Rough(Family):
+    """Rough disks, which spin: a collision turns the tangential velocity of the two
+    contact points into ``-beta`` times itself (``beta = tangential_restitution`` in
+    ``[-1, 1]``: -1 smooth, +1 perfectly rough), exchanging energy between
+    translation and rotation; Coulomb friction caps the tangential impulse at
+    ``friction`` times the normal one (Walton's model, the contact sliding beyond).
+    Box walls and wall segments have their own coefficients (default the disks').
+    Each disk has the moment of inertia ``q m r^2`` (``q = inertia``, ``1/2`` for a
+    uniform disk) and starts with the angular velocity ``angular_velocities``
+    (counter-clockwise).
+
+    Linear and angular momentum are conserved in every disk-disk collision, and the
+    energy for elastic collisions with ``beta = +-1``; what a collision takes is
+    dissipated.  Where the TC model makes a contact elastic it is also smooth; the
+    thermostat draws the spin with the velocity, at its temperature; a heated wall
+    sets the velocity only.  Rough disks do not combine with gravity, growth, shear
+    or disks that come to rest (yet).
+
+    Attributes
+    ----------
+    beta, friction, wall_beta, wall_friction : float
+    inertia : ndarray, shape (N,)
+        ``q`` of each disk, in ``(0, 1]``.
+    spins : ndarray, shape (N,)
+        The angular velocities at the start.
+    """
+
+    name: ClassVar[str] = "rough"
+    keywords: ClassVar[tuple[Keyword, ...]] = (
+        Keyword("tangential_restitution", None, "rate",
+                "beta in [-1, 1]: -1 smooth (default), +1 perfectly rough"),
+        Keyword("friction", None, "",
+                "Coulomb's coefficient of disk-disk contacts, >= 0 (default: no limit)"),
+        Keyword("wall_tangential_restitution", None, "",
+                "beta at walls (default: the disks')"),
+        Keyword("wall_friction", None, "", "Coulomb's coefficient at walls"),
+        Keyword("inertia", None, "",
+                "q in (0, 1], per disk or for all: the moment of inertia q m r^2 "
+                "(default 1/2)"),
+        Keyword("angular_velocities", None, "",
+                "the angular velocities at the start, per disk or for all (default 0)"),
+    )
+
+    beta: float
+    friction: float
+    wall_beta: float
+    wall_friction: float
+    inertia: np.ndarray
+    spins: np.ndarray
+
+    @classmethod
+    def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
+            cls, system: System | None = None, *,
+            tangential_restitution: float | None = None, friction: float | None = None,
+            wall_tangential_restitution: float | None = None,
+            wall_friction: float | None = None, inertia: Any = None,
+            angular_velocities: Any = None) -> Rough | None:
+        """``None`` (smooth disks) or rough disks.
+
+        Parameters
+        ----------
+        system : System
+            Its number of disks.
+        tangential_restitution, friction, wall_tangential_restitution, wall_friction :
+            float, optional
+        inertia, angular_velocities : float or array_like, optional
+
+        Returns
+        -------
+        Rough or None
+
+        Raises
+        ------
+        ValueError
+            For a value out of its range, or the other keywords without a
+            tangential restitution.
+        """
+        assert system is not None  # (checked with the system, which it needs)
+        n = len(system.radii)
+        values = {}
+        for name, value, low, high in (
+                ("tangential_restitution", tangential_restitution, -1.0, 1.0),
+                ("wall_tangential_restitution", wall_tangential_restitution, -1.0, 1.0),
+                ("friction", friction, 0.0, math.inf),
+                ("wall_friction", wall_friction, 0.0, math.inf)):
+            if value is None:
+                continue
+            with about(name):
+                x = float(as_float_array(name, value, (), allow_inf=True))
+                if not low <= x <= high:
+                    raise ValueError(f"{name} must lie in [{low:g}, {high:g}], got {x!r}")
+            values[name] = x
+        if "tangential_restitution" not in values and "wall_tangential_restitution" not in \
+                values:
+            given = [k for k, v in (("friction", friction), ("wall_friction", wall_friction),
+                                    ("inertia", inertia),
+                                    ("angular_velocities", angular_velocities))
+                     if v is not None]
+            if given:
+                with about(given[0]):
+                    raise ValueError(f"{given[0]} needs tangential_restitution (rough "
+                                     f"disks)")
+            return None
+        beta = values.get("tangential_restitution", -1.0)
+        q = np.full(n, 0.5)
+        if inertia is not None:
+            with about("inertia"):
+                q = np.broadcast_to(as_float_array(
+                    "inertia", inertia, (n,) if np.ndim(inertia) else ()), (n,)).copy()
+                if not np.all((q > 0.0) & (q <= 1.0)):
+                    raise ValueError(f"inertia must lie in (0, 1], got {inertia!r}")
+        spins = np.zeros(n)
+        if angular_velocities is not None:
+            with about("angular_velocities"):
+                spins = np.broadcast_to(as_float_array(
+                    "angular_velocities", angular_velocities,
+                    (n,) if np.ndim(angular_velocities) else ()), (n,)).copy()
+        return cls(beta, values.get("friction", math.inf),
+                   values.get("wall_tangential_restitution", beta),
+                   values.get("wall_friction", values.get("friction", math.inf)), q, spins)
+
+    def log(self) -> dict:
+        """The coefficients and each disk's ``inertia`` (a GSD frame holds the angular
+        velocities at its time as a per-particle quantity, which :mod:`edmd2d.io.gsd`
+        reads back as ``angular_velocities``).
+
+        Returns
+        -------
+        dict of str to ndarray
+        """
+        return {"tangential_restitution": np.array([self.beta]),
+                "friction": np.array([self.friction]),
+                "wall_tangential_restitution": np.array([self.wall_beta]),
+                "wall_friction": np.array([self.wall_friction]),
+                "inertia": np.asarray(self.inertia, np.float64)}
+
+
+for _family in (Restitution, Gravity, HeatedWalls, Thermostat, Growth, Resting, Shear,
+                Rough):
     register(_family)
 
 

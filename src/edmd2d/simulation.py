@@ -728,15 +728,57 @@ class Simulation(SimulationBase):
         return float(-dot(state.mass[movable], dot(state.unwrapped()[movable], state.gravity)))
 
     def total_energy(self) -> float:
-        """``kinetic_energy() + potential_energy()``: constant to rounding for elastic
-        disks (while no immovable disk moves); with inelastic collisions it decreases
-        by :meth:`dissipated_energy`.
+        """``kinetic_energy() + potential_energy()`` (and ``rotational_energy()`` for
+        rough disks): constant to rounding for elastic disks (while no immovable disk
+        moves); with inelastic collisions (or rough ones that are neither smooth nor
+        perfectly rough) it decreases by :meth:`dissipated_energy`.
 
         Returns
         -------
         float
         """
-        return self.kinetic_energy() + self.potential_energy()
+        total = self.kinetic_energy() + self.potential_energy()
+        return total + self.rotational_energy() if self._state.rough_w is not None else total
+
+    @property
+    def angular_velocities(self) -> np.ndarray:
+        """Rough disks (:class:`edmd2d.physics.Rough`): each disk's angular velocity,
+        counter-clockwise (zero for smooth disks), read-only.
+
+        Returns
+        -------
+        numpy.ndarray, shape (N,)
+        """
+        state = self._state
+        w = state.rough_w
+        return state.to_user(np.zeros(len(state.S)) if w is None else w.copy())
+
+    @property
+    def angles(self) -> np.ndarray:
+        """Rough disks: each disk's angle, turned from 0 at the start at its angular
+        velocity (zero for smooth disks), read-only.
+
+        Returns
+        -------
+        numpy.ndarray, shape (N,)
+        """
+        state = self._state
+        if state.rough_w is None:
+            return state.to_user(np.zeros(len(state.S)))
+        return state.to_user(state.angles())
+
+    def rotational_energy(self) -> float:
+        """The rotational kinetic energy ``sum I w^2 / 2`` (zero for smooth disks).
+
+        Returns
+        -------
+        float
+        """
+        bundle = self._state.rough_bundle()
+        if bundle is None:
+            return 0.0
+        movable = bundle.inv_inertia > 0
+        return float(0.5 * np.sum(bundle.w[movable] ** 2 / bundle.inv_inertia[movable]))
 
     def set_positions(self, positions: ArrayLike) -> None:
         """Move every disk to new positions at the current time (``sim.positions = ...``

@@ -532,6 +532,25 @@ class Helfand(NamedTuple):
     sums: np.ndarray
 
 
+class Rough(NamedTuple):
+    """Rough disks: rotation and tangential restitution (see :mod:`.rough`)."""
+
+    #: The tangential restitution of disk-disk contacts, in ``[-1, 1]``.
+    beta: float
+    #: Coulomb's coefficient of disk-disk contacts (``inf``: no limit).
+    friction: float
+    #: The same at walls (box walls and segments).
+    wall_beta: float
+    wall_friction: float
+    #: float64, shape (N,): the angular velocities.
+    w: np.ndarray
+    #: float64, shape (N,): the angles at ``t_angle``.
+    angle: np.ndarray
+    t_angle: np.ndarray
+    #: float64, shape (N,): ``1 / I``, ``I = q m r^2`` (0 for an immovable disk).
+    inv_inertia: np.ndarray
+
+
 class ModelFamilies(NamedTuple):
     """The families a ``models.Model`` hands the engine, each ``None`` when unused."""
 

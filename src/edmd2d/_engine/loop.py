@@ -55,7 +55,10 @@ argument per physics family, each ``None`` when unused:
 ``helfand``
     the sums of the Einstein-Helfand moments (``layout.Helfand``, :mod:`.helfand`):
     each disk's free flights as the loop moves it, and each collision's transfer of
-    energy across the pair (elastic disks in a periodic box only).
+    energy across the pair (elastic disks in a periodic box only);
+``rough``
+    disks that spin (``layout.Rough``, :mod:`.rough`): after each collision with a disk
+    or a wall, the tangential impulse of the contact points.
 
 numba prunes the branches of an argument that is ``None``, so each combination of
 families compiles its own ``run``, only when used, and the elastic default compiles to
@@ -71,6 +74,7 @@ import numpy as np
 from .._jit import kernel, njit
 from . import helfand as _helfand
 from . import lookahead, prefetch, queue, response, resting, sheared
+from . import rough as _rough
 from .flight import drift, velocity_at
 from .grid import insert, remove
 from .layout import (
@@ -174,7 +178,8 @@ def _make_room(m, k, log_t, log_e, log_j):
 
 @kernel
 def run(control, particles, grid, walls, calendar, tallies, log,
-        contact, heated, thermostat, uniforms, gravity, growth, rest, shear, helfand):
+        contact, heated, thermostat, uniforms, gravity, growth, rest, shear, helfand,
+        rough):
     """Process events in time order (``control.mode`` RUN_EVENTS), or (``mode``
     PREDICT_ALL) predict every disk's next event from the time ``out[0]`` and rebuild
     the queue.  (``t_end``, ``max_collisions``, ``max_events``, ``mode``, ``out`` and
@@ -299,7 +304,8 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     sliding = True
                     t = t_slide
             if uniforms is not None and not sliding:
-                if response.needs_random(uniforms):
+                if response.needs_random(uniforms) or (rough is not None
+                                                       and _rough.needs_random(uniforms)):
                     status = NEED_RANDOM
                     break
             if thermostat is not None and not sliding:
@@ -425,8 +431,13 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                             held_j = gravity.support[j]
                         if helfand is not None:
                             e_before = _helfand.energy(i, S, invm)
+                        if rough is not None:
+                            sticks = not _rough.smooth(i, j, t, contact)
+                            vix, viy, vjx, vjy = S[i, VX], S[i, VY], S[j, VX], S[j, VY]
                         response.collide_pair(i, j, t, aux, S, invm, acc, gf, contact,
                                               gravity, growth, shear)
+                        if rough is not None and sticks:
+                            _rough.pair(i, j, t, vix, viy, vjx, vjy, S, invm, acc, rough)
                         if helfand is not None:
                             _helfand.heat(i, j, aux, e_before, S, invm, gf, helfand)
                         if rest is not None:
@@ -467,9 +478,15 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 if rest is not None:
                     # (Its collision before this one, for resting.slide.)
                     before = contact.t_last[i] if contact is not None else -INF
+                if rough is not None:
+                    sticks = (not _rough.smooth(i, i, t, contact)
+                              and not response.hot(kind, partner, aux, heated))
+                    vix, viy = S[i, VX], S[i, VY]
                 # (One call site: each inlined copy lengthens the first compilation.)
                 response.collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf,
                                       wa, wb, contact, heated, uniforms, gravity, growth)
+                if rough is not None and sticks:
+                    _rough.wall(i, t, vix, viy, S, invm, acc, rough)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1
@@ -497,6 +514,9 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     _helfand.flight(i, t, S, invm, helfand)
                 drift(i, t, S, gravity)
                 response.redraw(i, S, invm, acc, thermostat, uniforms, gravity, shear)
+                if rough is not None:
+                    _rough.redraw(i, t, thermostat.kt, response.gaussian(uniforms), acc,
+                                  rough)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_KICKS] += 1

@@ -102,7 +102,7 @@ def _thermal(uniforms):
 
 
 @njit
-def _gaussian(uniforms):
+def gaussian(uniforms):
     """A standard normal deviate (Box-Muller, the cosine branch: two uniforms)."""
     r = _thermal(uniforms)
     return r * math.cos(2.0 * math.pi * _uniform(uniforms))
@@ -137,14 +137,14 @@ def redraw(k, S, invm, acc, thermostat, uniforms, gravity, shear):
         flow = shear.rate * (S[k, Y] - shear.half)
         ux = S[k, VX] - flow
         before = ux * ux + S[k, VY] * S[k, VY]
-        ux = s * _gaussian(uniforms)
+        ux = s * gaussian(uniforms)
         S[k, VX] = ux + flow
-        S[k, VY] = s * _gaussian(uniforms)
+        S[k, VY] = s * gaussian(uniforms)
         acc[A_THERMOSTAT] += 0.5 * (ux * ux + S[k, VY] * S[k, VY] - before) / invm[k]
     else:
         before = S[k, VX] * S[k, VX] + S[k, VY] * S[k, VY]
-        S[k, VX] = s * _gaussian(uniforms)
-        S[k, VY] = s * _gaussian(uniforms)
+        S[k, VX] = s * gaussian(uniforms)
+        S[k, VY] = s * gaussian(uniforms)
         acc[A_THERMOSTAT] += (0.5 * (S[k, VX] * S[k, VX] + S[k, VY] * S[k, VY] - before)
                               / invm[k])
     if gravity is not None:
@@ -390,7 +390,7 @@ def _heat(i, k, nx, ny, S, invm, acc, wacc, kind, partner, heated, uniforms):
     vy0 = S[i, VY]
     vn_old = vx0 * nx + vy0 * ny
     vn = s * _thermal(uniforms)
-    vt = s * _gaussian(uniforms)
+    vt = s * gaussian(uniforms)
     S[i, VX] = vn * nx - vt * ny
     S[i, VY] = vn * ny + vt * nx
     gained = 0.5 * (S[i, VX] * S[i, VX] + S[i, VY] * S[i, VY]

@@ -221,6 +221,20 @@ def _frame(sim, writer: Writer):
             frame.log[f"edmd2d/{name}/{key}"] = np.asarray(value, np.float64)
     if "resting" in sim.families:  # (a per-particle quantity, as HOOMD logs them)
         frame.log["particles/edmd2d/resting"] = sim.resting.astype(np.uint8)
+    if "rough" in sim.families:
+        # HOOMD's orientation (a rotation by the angle about z) and principal moments
+        # of inertia; the angular velocity as a per-particle quantity.
+        half = 0.5 * sim.angles
+        orientation = np.zeros((sim.n, 4), np.float32)
+        orientation[:, 0] = np.cos(half)
+        orientation[:, 3] = np.sin(half)
+        frame.particles.orientation = orientation
+        inertia = np.zeros((sim.n, 3), np.float32)
+        q = sim.families["rough"].inertia
+        inertia[:, 2] = np.where(np.isfinite(masses), q * masses * sim.radii ** 2, 0.0)
+        frame.particles.moment_inertia = inertia
+        frame.log["particles/edmd2d/angular_velocity"] = np.asarray(sim.angular_velocities,
+                                                                    np.float64)
     return frame
 
 
@@ -330,6 +344,8 @@ def read(path: str | os.PathLike[str], frame: int = -1, *, radius_scale: float =
                        else np.asarray(f.particles.typeid, np.int64))
     if "edmd2d/gravity" in log:
         physics.setdefault("gravity", log["edmd2d/gravity"])
+    if "particles/edmd2d/angular_velocity" in log:
+        physics.setdefault("angular_velocities", log["particles/edmd2d/angular_velocity"])
     for name, family in _physics.FAMILIES.items():
         prefix = f"edmd2d/{name}/"
         logged = {key[len(prefix):]: value for key, value in log.items()

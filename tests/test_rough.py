@@ -209,3 +209,39 @@ def test_checkpoints_and_gsd_frames_carry_the_spins(tmp_path):
         np.testing.assert_allclose(frame.particles.orientation[:, 3], np.sin(half), atol=1e-6)
         np.testing.assert_allclose(frame.particles.moment_inertia[:, 2],
                                    0.4 * sim.masses * sim.radii ** 2, rtol=1e-6)
+
+
+def test_a_heavy_disk_and_a_grazing_pair_in_a_fast_frame_as_the_reference():
+    # The normal comes from the separation, the normal impulse from the change of the
+    # relative normal velocity: exact whichever disk is heavy, and in a moving frame.
+    for mass, offset, u in ((1e12, 0.3, 0.0), (1.0, 0.99, 1e4)):
+        pos = [[2.0, 5.0], [4.0, 5.0 + offset]]
+        vel = [[1.0 + u, 0.0], [-1.0 + u, 0.0]]
+        common = dict(box=ed.Box(1e7, 20.0, periodic=(True, False)),
+                      tangential_restitution=1.0, angular_velocities=[0.5, -2.0])
+        sim = ed.Simulation(pos, vel, 0.5, [mass, 1.0], **common)
+        ref = ReferenceSimulation(pos, vel, 0.5, [mass, 1.0], **common)
+        sim.advance(collisions=1)
+        ref.advance(collisions=1)
+        np.testing.assert_allclose(sim.angular_velocities, ref.angular_velocities,
+                                   rtol=1e-9, atol=1e-9)
+        np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=1e-12, atol=1e-9)
+
+
+def test_the_segment_feels_the_tangential_impulse():
+    sim = ed.Simulation([[5.0, 3.0]], [[0.0, -1.0]], 0.5, box=ed.Box(10.0, 10.0,
+                        periodic=False), walls=[ed.Wall((2.0, 1.0), (8.0, 1.0))],
+                        tangential_restitution=1.0, angular_velocities=4.0)
+    before = sim.velocities[0].copy()
+    sim.advance(until=2.0)
+    after = sim.velocities[0]
+    np.testing.assert_allclose(sim._state.wacc[0, :2], -(after - before), rtol=1e-12)
+    assert after[0] != 0.0
+
+
+def test_growth_is_refused_for_rough_disks():
+    sim = ed.make_gas(50, 0.3, seed=1, tangential_restitution=0.5)
+    with pytest.raises(ValueError, match="growth does not combine with rough"):
+        sim.set_growth(0.01)
+    with pytest.raises(ValueError, match="growth does not combine with rough"):
+        ed.compress(sim, 0.4)

@@ -48,7 +48,7 @@ from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, Box
 __all__ = ["Keyword", "System", "Family", "FAMILIES", "KEYWORDS", "register", "unregister",
            "owner", "about",
            "Restitution", "Gravity", "HeatedWalls", "Thermostat", "Growth", "Resting",
-           "Shear"]
+           "Shear", "Rough"]
 
 
 @dataclass(frozen=True)

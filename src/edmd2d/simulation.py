@@ -596,6 +596,8 @@ class Simulation(SimulationBase):
         of ``kinetic_energy()``).  Where disks come to rest (:class:`edmd2d.physics.Resting`)
         it includes the kinetic energy of the disks at rest (given back when they
         wake) and less the small lifts that keep a disk from pressing on a body at rest.
+        For rough disks it includes what their collisions take from the rotation too:
+        ``total_energy()`` (with the rotational energy) plus it stays constant.
 
         Returns
         -------
@@ -959,6 +961,10 @@ class Simulation(SimulationBase):
         growth = _physics.Growth.check(growth=rate)
         if growth is not None:
             growth.check_combination(self._state.model, self._state.gravity)
+            if "rough" in self._state.families:
+                with _physics.about("growth"):
+                    raise ValueError("growth does not combine with rough disks (their "
+                                     "moments of inertia follow their radii)")
         self._state.set_growth(growth)
 
     def advance(self, until: float | None = None, collisions: int | None = None,

@@ -437,7 +437,8 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                         response.collide_pair(i, j, t, aux, S, invm, acc, gf, contact,
                                               gravity, growth, shear)
                         if rough is not None and sticks:
-                            _rough.pair(i, j, t, vix, viy, vjx, vjy, S, invm, acc, rough)
+                            _rough.pair(i, j, t, aux, gf, vix, viy, vjx, vjy, S, invm, acc,
+                                        rough)
                         if helfand is not None:
                             _helfand.heat(i, j, aux, e_before, S, invm, gf, helfand)
                         if rest is not None:
@@ -486,7 +487,8 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 response.collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf,
                                       wa, wb, contact, heated, uniforms, gravity, growth)
                 if rough is not None and sticks:
-                    _rough.wall(i, t, vix, viy, S, invm, acc, rough)
+                    _rough.wall(i, t, kind, partner, aux, vix, viy, S, invm, acc, wacc, gf,
+                                wa, wb, rough)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1

@@ -219,6 +219,45 @@ def _note_collision(i, t, invm, contact):
         t_last[i] = t
 
 
+@njit
+def wall_normal(i, kind, partner, aux, S, gf, wa, wb):
+    """The normal ``n`` from the wall of a BOX (side ``aux``) or SEGMENT (``partner``,
+    its side or end point and image shift packed in ``aux``) event into disk ``i``'s
+    side, not normalised for a segment (as for a pair, see :func:`collide_pair`): ``(nx,
+    ny, nn, col)`` with ``nn = n.n`` (exactly 1 at a box wall) and ``col`` the
+    segment's tally of that contact (``W_LEFT``, ``W_RIGHT`` or ``W_ENDS``; unused for
+    a box wall)."""
+    if kind == BOX:
+        # Lower wall: normal +e; upper wall: normal -e.
+        sign = 1.0 if aux % 2 == 0 else -1.0
+        nx = sign if aux < 2 else 0.0
+        ny = 0.0 if aux < 2 else sign
+        return nx, ny, 1.0, W_LEFT
+    part, code = unpack_segment(aux)
+    sx, sy = unpack_shift(code)
+    shx = sx * gf[0]
+    shy = sy * gf[1]
+    ax = wa[partner, 0] + shx
+    ay = wa[partner, 1] + shy
+    bx = wb[partner, 0] + shx
+    by = wb[partner, 1] + shy
+    if part == 0:
+        nx = ay - by
+        ny = bx - ax
+        col = W_LEFT
+        if (S[i, X] - ax) * nx + (S[i, Y] - ay) * ny < 0.0:
+            nx = -nx
+            ny = -ny
+            col = W_RIGHT
+    else:
+        ex = ax if part == 1 else bx
+        ey = ay if part == 1 else by
+        nx = S[i, X] - ex
+        ny = S[i, Y] - ey
+        col = W_ENDS
+    return nx, ny, nx * nx + ny * ny, col
+
+
 @njit(inline="always")
 def collide_pair(i, j, t, aux, S, invm, acc, gf, contact, gravity, growth, shear):
     """Resolve the contact of disks ``i`` and ``j`` (both at time ``t``; ``j`` seen
@@ -425,40 +464,10 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
     a velocity along that wall's normal.  Under growth the disk's rim moves towards
     the wall at ``rate R_i``: the contact reverses the rate at which the gap closes
     (see :func:`collide_pair`)."""
-    # The normal n into the gas, not normalised for a segment (as for a pair, see
-    # collide_pair): ``nn = n.n``, exactly 1 at a box wall.
+    nx, ny, nn, col = wall_normal(i, kind, partner, aux, S, gf, wa, wb)
     if kind == BOX:
-        # Lower wall: normal +e; upper wall: normal -e.
-        sign = 1.0 if aux % 2 == 0 else -1.0
-        nx = sign if aux < 2 else 0.0
-        ny = 0.0 if aux < 2 else sign
-        nn = 1.0
         slot = A_BOX + aux
-        col = W_LEFT  # (unused for a box wall)
     else:
-        part, code = unpack_segment(aux)
-        sx, sy = unpack_shift(code)
-        shx = sx * gf[0]
-        shy = sy * gf[1]
-        ax = wa[partner, 0] + shx
-        ay = wa[partner, 1] + shy
-        bx = wb[partner, 0] + shx
-        by = wb[partner, 1] + shy
-        if part == 0:
-            nx = ay - by
-            ny = bx - ax
-            col = W_LEFT
-            if (S[i, X] - ax) * nx + (S[i, Y] - ay) * ny < 0.0:
-                nx = -nx
-                ny = -ny
-                col = W_RIGHT
-        else:
-            ex = ax if part == 1 else bx
-            ey = ay if part == 1 else by
-            nx = S[i, X] - ex
-            ny = S[i, Y] - ey
-            col = W_ENDS
-        nn = nx * nx + ny * ny
         slot = A_SEGMENTS
         wacc[partner, W_CONTACTS] += 1.0
     # Mirror the normal velocity (scaled by e), if approaching; or, at a heated wall,

@@ -14,10 +14,12 @@ the contact slides beyond).  It changes ``v_i`` by ``J_t t / m_i`` and ``w_i`` b
 I_j``); the energy it takes, ``-(J_t g_t + K J_t^2 / 2)``, is dissipated.  The
 reference's ``_rough.py`` writes the same rules out plainly.
 
-The loop applies it after the ordinary collision, from the velocity change that
-collision made: its direction is the normal, its size times the mass ``J_n``; a
-contact that exchanged nothing (rounding left it not approaching) gets no
-tangential impulse either.  Where the TC model made the contact elastic (decided
+The loop applies it after the ordinary collision: the normal is the pair's
+separation (the wall's normal) at contact, and ``J_n`` the change that collision made
+to the normal relative velocity over the sum of the inverse masses; a contact that
+exchanged nothing (rounding left it not approaching) gets no tangential impulse
+either.  A segment receives the opposite of the disk's tangential impulse in its
+force tally.  Where the TC model made the contact elastic (decided
 before the collision, :func:`smooth`), it is smooth as well.  A heated wall sets the
 velocity only.  The thermostat draws the spin with the velocity, at its
 temperature (:func:`redraw`).
@@ -31,8 +33,23 @@ from __future__ import annotations
 import math
 
 from .._jit import njit
-from .layout import A_DISSIPATED, A_THERMOSTAT, A_VIRIAL_XX, A_VIRIAL_XY, A_VIRIAL_YY, VX, VY, R
-from .response import RANDOM_PER_EVENT
+from .layout import (
+    A_DISSIPATED,
+    A_THERMOSTAT,
+    A_VIRIAL_XX,
+    A_VIRIAL_XY,
+    A_VIRIAL_YY,
+    SEGMENT,
+    VX,
+    VY,
+    W_FX,
+    W_FY,
+    R,
+    X,
+    Y,
+    unpack_shift,
+)
+from .response import RANDOM_PER_EVENT, wall_normal
 
 
 @njit
@@ -63,27 +80,30 @@ def _limited(j_t, jn, mu):
 
 
 @njit
-def pair(i, j, t, vix, viy, vjx, vjy, S, invm, acc, rough):
-    """The tangential impulse of the collision of ``i`` and ``j`` at ``t``, whose
-    normal impulse changed their velocities from ``(vix, viy)`` and ``(vjx, vjy)``."""
-    # The normal impulse on i, J_n n, from the movable disk's velocity change.
-    if invm[i] > 0.0:
-        jx = (S[i, VX] - vix) / invm[i]
-        jy = (S[i, VY] - viy) / invm[i]
-    else:
-        jx = -(S[j, VX] - vjx) / invm[j]
-        jy = -(S[j, VY] - vjy) / invm[j]
-    jn = math.sqrt(jx * jx + jy * jy)
-    if jn == 0.0:
+def pair(i, j, t, aux, gf, vix, viy, vjx, vjy, S, invm, acc, rough):
+    """The tangential impulse of the collision of ``i`` with the image ``aux`` of
+    ``j`` at ``t``, whose normal impulse changed their velocities from ``(vix, viy)``
+    and ``(vjx, vjy)``."""
+    sx, sy = unpack_shift(aux)
+    dx = S[i, X] - (S[j, X] + sx * gf[0])
+    dy = S[i, Y] - (S[j, Y] + sy * gf[1])
+    dist = math.sqrt(dx * dx + dy * dy)
+    nx = dx / dist
+    ny = dy / dist
+    # The normal impulse on i: the change of the normal relative velocity over the
+    # sum of the inverse masses (exact for either disk heavy).
+    wsum = invm[i] + invm[j]
+    jn = (((S[i, VX] - S[j, VX]) - (vix - vjx)) * nx
+          + ((S[i, VY] - S[j, VY]) - (viy - vjy)) * ny) / wsum
+    if not jn > 0.0:
         return
-    tx = -jy / jn
-    ty = jx / jn
+    tx = -ny
+    ty = nx
     ri = S[i, R]
     rj = S[j, R]
     g_t = ((S[i, VX] - S[j, VX]) * tx + (S[i, VY] - S[j, VY]) * ty
            - (ri * rough.w[i] + rj * rough.w[j]))
-    k = (invm[i] + invm[j] + ri * ri * rough.inv_inertia[i]
-         + rj * rj * rough.inv_inertia[j])
+    k = wsum + ri * ri * rough.inv_inertia[i] + rj * rj * rough.inv_inertia[j]
     j_t = _limited(-(1.0 + rough.beta) * g_t / k, jn, rough.friction)
     _turn(i, t, rough)
     _turn(j, t, rough)
@@ -94,35 +114,38 @@ def pair(i, j, t, vix, viy, vjx, vjy, S, invm, acc, rough):
     rough.w[i] -= ri * j_t * rough.inv_inertia[i]
     rough.w[j] -= rj * j_t * rough.inv_inertia[j]
     acc[A_DISSIPATED] -= j_t * g_t + 0.5 * k * j_t * j_t
-    # The virial of the tangential impulse on i, across d = (r_i + r_j) n.
-    dist = ri + rj
-    nx = jx / jn
-    ny = jy / jn
-    acc[A_VIRIAL_XX] += dist * nx * j_t * tx
-    acc[A_VIRIAL_YY] += dist * ny * j_t * ty
-    acc[A_VIRIAL_XY] += dist * nx * j_t * ty
+    # The virial of the tangential impulse on i, across d.
+    acc[A_VIRIAL_XX] += dx * j_t * tx
+    acc[A_VIRIAL_YY] += dy * j_t * ty
+    acc[A_VIRIAL_XY] += dx * j_t * ty
 
 
 @njit
-def wall(i, t, vix, viy, S, invm, acc, rough):
-    """The tangential impulse of disk ``i`` on a wall at ``t``, whose normal impulse
-    changed its velocity from ``(vix, viy)``."""
-    dvx = S[i, VX] - vix
-    dvy = S[i, VY] - viy
-    dv = math.sqrt(dvx * dvx + dvy * dvy)
-    if dv == 0.0:
+def wall(i, t, kind, partner, aux, vix, viy, S, invm, acc, wacc, gf, wa, wb, rough):
+    """The tangential impulse of disk ``i`` on the wall of a BOX or SEGMENT event at
+    ``t``, whose normal impulse changed its velocity from ``(vix, viy)``; a segment
+    receives the opposite impulse (``wacc``)."""
+    nx, ny, nn, _ = wall_normal(i, kind, partner, aux, S, gf, wa, wb)
+    norm = math.sqrt(nn)
+    nx /= norm
+    ny /= norm
+    jn = ((S[i, VX] - vix) * nx + (S[i, VY] - viy) * ny) / invm[i]
+    if not jn > 0.0:
         return
-    tx = -dvy / dv
-    ty = dvx / dv
+    tx = -ny
+    ty = nx
     ri = S[i, R]
     g_t = S[i, VX] * tx + S[i, VY] * ty - ri * rough.w[i]
     k = invm[i] + ri * ri * rough.inv_inertia[i]
-    j_t = _limited(-(1.0 + rough.wall_beta) * g_t / k, dv / invm[i], rough.wall_friction)
+    j_t = _limited(-(1.0 + rough.wall_beta) * g_t / k, jn, rough.wall_friction)
     _turn(i, t, rough)
     S[i, VX] += j_t * tx * invm[i]
     S[i, VY] += j_t * ty * invm[i]
     rough.w[i] -= ri * j_t * rough.inv_inertia[i]
     acc[A_DISSIPATED] -= j_t * g_t + 0.5 * k * j_t * j_t
+    if kind == SEGMENT:
+        wacc[partner, W_FX] -= j_t * tx
+        wacc[partner, W_FY] -= j_t * ty
 
 
 @njit

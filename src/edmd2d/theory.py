@@ -103,6 +103,9 @@ __all__ = [
     "enskog_bulk_viscosity",
     "enskog_diffusion",
     "long_time_tail",
+    "rough_cooling_rates",
+    "rough_hcs_ratio",
+    "rough_hcs_cooling_rate",
     "maxwell_boltzmann_speed_pdf",
 ]
 
@@ -729,6 +732,115 @@ def long_time_tail(viscosity: float, diffusion: float, density: float,
     kt = as_positive_float("temperature", temperature)
     m = as_positive_float("mass", mass)
     return kt / (8.0 * math.pi * (eta + m * n * d))
+
+
+def _rough_coefficients(e: float, beta: float, q: float) -> tuple[float, float, float]:
+    """``(A, B, C)`` of the cooling equations of rough disks (see
+    :func:`rough_hcs_ratio`), checked."""
+    e = _restitution(e)
+    if not -1.0 <= beta <= 1.0:
+        raise ValueError(f"beta must lie in [-1, 1], got {beta!r}")
+    if not 0.0 < q <= 1.0:
+        raise ValueError(f"q must lie in (0, 1], got {q!r}")
+    eta = q * (1.0 + beta) / (2.0 * (1.0 + q))
+    return (0.5 * (1.0 - e * e) + eta * (1.0 - eta), eta * eta / q,
+            (eta / q) * (1.0 - eta / q))
+
+
+def rough_cooling_rates(e: float, beta: float, q: float, t_tr: float,
+                        t_rot: float) -> tuple[float, float]:
+    """The cooling of a homogeneous gas of rough disks (2D, molecular chaos and
+    Maxwellian velocities and spins, after Huthmann and Zippelius, Phys. Rev. E 56,
+    R6275 (1997) and Luding, Huthmann, McNamara and Zippelius, Phys. Rev. E 58, 3416
+    (1998), derived anew for disks): ``dT_tr/dt = omega (-A T_tr + B T_rot)`` and
+    ``dT_rot/dt = 2 omega (B T_tr - C T_rot)`` over the collision rate per disk
+    ``omega``, with ``eta = q (1 + beta) / (2 (1 + q))``, ``A = (1 - e^2)/2 + eta (1 -
+    eta)``, ``B = eta^2 / q`` and ``C = (eta / q)(1 - eta / q)``; ``T_tr = <m v_x^2>``,
+    ``T_rot = <I w^2>``.  The factor 2 is that of two translational degrees of freedom
+    against one rotational.
+
+    Parameters
+    ----------
+    e : float
+        Normal restitution, in ``(0, 1]``.
+    beta : float
+        Tangential restitution, in ``[-1, 1]``.
+    q : float
+        ``I / (m r^2)``, in ``(0, 1]``.
+    t_tr, t_rot : float
+        The temperatures.
+
+    Returns
+    -------
+    (float, float)
+        ``dT_tr/dt / omega`` and ``dT_rot/dt / omega``.
+
+    Examples
+    --------
+    >>> [abs(round(x, 12)) for x in rough_cooling_rates(1.0, 1.0, 0.5, 1.0, 1.0)]
+    [0.0, 0.0]
+    """
+    a, b, c = _rough_coefficients(e, beta, q)
+    return -a * t_tr + b * t_rot, 2.0 * (b * t_tr - c * t_rot)
+
+
+def rough_hcs_ratio(e: float, beta: float, q: float = 0.5) -> float:
+    """``T_rot / T_tr`` of rough disks in the homogeneous cooling state (where both
+    temperatures decay at one rate; the cooling equations of
+    :func:`rough_cooling_rates`): the positive root of ``B R^2 + (2 C - A) R - 2 B =
+    0``.  ``1`` for ``e = 1`` and ``beta = 1``, where no energy is lost
+    (equipartition); any other ``beta`` dissipates the tangential motion, elastic or
+    not.
+
+    Parameters
+    ----------
+    e : float
+        Normal restitution, in ``(0, 1]``.
+    beta : float
+        Tangential restitution, in ``(-1, 1]`` (smooth disks do not exchange).
+    q : float, default 0.5
+        ``I / (m r^2)``, in ``(0, 1]``.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(rough_hcs_ratio(1.0, 1.0), 12), round(rough_hcs_ratio(0.9, 0.0), 4)
+    (1.0, 0.4695)
+    """
+    a, b, c = _rough_coefficients(e, beta, q)
+    if b == 0.0:
+        raise ValueError("beta = -1: smooth disks have no cooling state of rotation")
+    p = a - 2.0 * c
+    root = math.sqrt(p * p + 8.0 * b * b)
+    # (The two forms of the root; the one without cancellation.)
+    return (p + root) / (2.0 * b) if p >= 0.0 else 4.0 * b / (root - p)
+
+
+def rough_hcs_cooling_rate(e: float, beta: float, q: float = 0.5) -> float:
+    """The cooling rate of rough disks in the homogeneous cooling state over the
+    collision rate per disk: ``-d ln T / dt / omega = A - B R`` (the same for both
+    temperatures; :func:`rough_hcs_ratio`).  Haff's law follows: ``T(t) = T(0) / (1 +
+    t / tau)^2`` with ``tau = 2 / (omega_0 (A - B R))``.
+
+    Parameters
+    ----------
+    e, beta, q : float
+        As for :func:`rough_hcs_ratio`.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(rough_hcs_cooling_rate(1.0, 1.0), 12)
+    0.0
+    """
+    a, b, _ = _rough_coefficients(e, beta, q)
+    return a - b * rough_hcs_ratio(e, beta, q)
 
 
 def haff_temperature(restitution: float, time: ArrayLike,

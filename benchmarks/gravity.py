@@ -20,19 +20,16 @@ ratio of each pair of turns.
 
 from __future__ import annotations
 
-import argparse
 import statistics
 
 from timing import collision_rate as rate
+from timing import turns_parser
 
 import edmd2d as ed
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--n", type=int, default=10_000)
-    parser.add_argument("--k", type=float, default=10.0, help="collisions per disk a turn")
-    parser.add_argument("--reps", type=int, default=7)
+    parser = turns_parser(__doc__)
     args = parser.parse_args()
     n = args.n
     flat = ed.make_gas(n, 0.3, periodic=(True, False), seed=1)

@@ -19,18 +19,13 @@ its smooth counterpart, and the extra bytes per disk.
 
 from __future__ import annotations
 
-import argparse
-
-from timing import alternating_rates, print_rates
+from timing import alternating_rates, print_rates, turns_parser
 
 import edmd2d as ed
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--n", type=int, default=10_000)
-    parser.add_argument("--k", type=float, default=10.0, help="collisions per disk a turn")
-    parser.add_argument("--reps", type=int, default=7)
+    parser = turns_parser(__doc__)
     args = parser.parse_args()
     n = args.n
     elastic = {"smooth": ed.make_gas(n, 0.5, seed=1),

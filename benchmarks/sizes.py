@@ -24,12 +24,11 @@ and the bytes per disk of the engine's arrays (``timing.engine_array_bytes``).
 
 from __future__ import annotations
 
-import argparse
 import statistics
 
 import numpy as np
 from timing import collision_rate as rate
-from timing import engine_array_bytes
+from timing import engine_array_bytes, turns_parser
 
 import edmd2d as ed
 
@@ -53,10 +52,7 @@ def systems(n: int, rng: np.random.Generator) -> dict[str, np.ndarray]:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--n", type=int, default=10_000)
-    parser.add_argument("--k", type=float, default=10.0, help="collisions per disk a turn")
-    parser.add_argument("--reps", type=int, default=3, help="rounds of turns")
+    parser = turns_parser(__doc__, reps=3, reps_help="rounds of turns")
     args = parser.parse_args()
     n = args.n
     sims = {}

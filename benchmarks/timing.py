@@ -8,6 +8,7 @@ the speed of the code under test.
 
 from __future__ import annotations
 
+import argparse
 import statistics
 import time
 
@@ -153,3 +154,14 @@ def print_rates(rates: dict, baseline: str, width: int = 10) -> None:
         ratios = [b / a for a, b in zip(rates[baseline], rates[name])]
         print(f"  {name} / {baseline}: median {statistics.median(ratios):.3f} "
               f"(range {min(ratios):.3f}-{max(ratios):.3f})")
+
+
+def turns_parser(doc: str, reps: int = 7, reps_help: str | None = None) -> argparse.ArgumentParser:
+    """The command line of a benchmark that times systems in turns: ``--n`` disks,
+    ``--k`` collisions per disk a turn, ``--reps`` turns (the description: the first
+    paragraph of ``doc``)."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    parser.add_argument("--n", type=int, default=10_000)
+    parser.add_argument("--k", type=float, default=10.0, help="collisions per disk a turn")
+    parser.add_argument("--reps", type=int, default=reps, help=reps_help)
+    return parser

@@ -19,21 +19,17 @@ and of the ratio of each turn with the moments to the turn without before it.
 
 from __future__ import annotations
 
-import argparse
 import statistics
 import time
 
-from timing import alternating_rates, print_rates
+from timing import alternating_rates, print_rates, turns_parser
 
 import edmd2d as ed
 from edmd2d.transport import Transport
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--n", type=int, default=10_000)
-    parser.add_argument("--k", type=float, default=10.0, help="collisions per disk a turn")
-    parser.add_argument("--reps", type=int, default=7)
+    parser = turns_parser(__doc__)
     parser.add_argument("--lags", type=int, default=40, help="windows per sample")
     args = parser.parse_args()
     n = args.n

@@ -20,8 +20,9 @@ at the right key of a file without reading the message.
 Examples
 --------
 >>> from edmd2d import physics
->>> list(physics.FAMILIES)
-['restitution', 'gravity', 'heated_walls', 'thermostat', 'growth', 'resting', 'shear']
+>>> list(physics.FAMILIES)  # doctest: +NORMALIZE_WHITESPACE
+['restitution', 'gravity', 'heated_walls', 'thermostat', 'growth', 'resting', 'shear',
+ 'rough']
 >>> physics.Thermostat.check(thermostat=(1.0, 0.5))
 Thermostat(temperature=1.0, rate=0.5)
 >>> physics.Gravity.check(gravity=(0.0, 0.0)) is None   # (no gravity: straight flights)

@@ -215,9 +215,10 @@ class EngineState:
         self.rough_w = self.rough_angle = self.rough_t = self.rough_inv_inertia = None
         if rough is not None:
             with about("tangential_restitution"):
-                for name in ("growth", "gravity", "resting", "shear"):
-                    if (growth if name == "growth" else gravity if name == "gravity"
-                            else families.get(name)) is not None:
+                others = {"growth": growth, "gravity": gravity,
+                          "resting": families.get("resting"), "shear": families.get("shear")}
+                for name, other in others.items():
+                    if other is not None:
                         raise ValueError(f"rough disks do not combine with {name}")
             movable = np.isfinite(mass)
             self.rough_w = np.where(movable, rough.spins, 0.0)

@@ -571,7 +571,6 @@ def transport(sim: Simulation, duration: float, *, dt: float, window: float,
             f"each block's origins must span at least the window (at most "
             f"window = duration / (blocks + 1) = {duration / (blocks + 1):.6g})")
     op = Transport(dt=dt, window=window, block=per * dt, fit=fit, blocks=blocks)
-    _check_equilibrium(sim)
     bar, owned = _progress.bar(progress, total=duration, unit="time", desc="transport")
     try:
         run(sim, until=sim.time + steps * dt, operations=[op],

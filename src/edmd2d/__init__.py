@@ -11,6 +11,7 @@
 from . import _compile_notice, checkpoint, models, operations, theory, transport  # noqa: F401
 from ._version import __version__  # noqa: F401
 from .analysis import (
+    angular_velocity_distribution,
     hexatic_order,
     local_packing_fractions,
     maxwell_boltzmann_test,
@@ -24,13 +25,22 @@ from .builders import lattice_packing_limit, make_gas, random_gas, random_packin
 from .compress import Compression, compress, packing_fraction
 from .contacts import ContactNetwork, contact_network, contact_tolerance
 from .geometry import Box, Wall
-from .measurements import Cooling, Measurement, cooling, kinetic_temperature, measure
+from .measurements import (
+    Cooling,
+    Measurement,
+    cooling,
+    kinetic_temperature,
+    measure,
+    rotational_temperature,
+)
 from .simulation import Counts, Simulation
 
 __all__ = [
     "Box", "Wall", "Simulation", "Counts", "make_gas", "lattice_packing_limit",
-    "measure", "Measurement", "kinetic_temperature", "cooling", "Cooling", "models",
+    "measure", "Measurement", "kinetic_temperature", "rotational_temperature", "cooling",
+    "Cooling", "models",
     "radial_distribution", "speed_distribution", "maxwell_boltzmann_test",
+    "angular_velocity_distribution",
     "trajectory", "mean_squared_displacement", "hexatic_order",
     "theory", "checkpoint", "operations", "transport",
     "random_packing", "contact_network", "contact_tolerance", "ContactNetwork",

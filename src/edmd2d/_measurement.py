@@ -128,6 +128,10 @@ class Measurement:
         error (``nan`` without shear).  In 2D it depends on the system size and on
         the shear rate (the long-time tail of the stress autocorrelation): quote them
         with it.
+    rotational_temperature, rotational_temperature_error : float
+        Rough disks (:class:`edmd2d.physics.Rough`): the rotational temperature
+        ``kT_rot = sum I w^2 / N`` (:func:`rotational_temperature`) averaged over the
+        block boundaries, as ``temperature``; ``nan`` for smooth disks.
     """
 
     duration: float
@@ -169,6 +173,8 @@ class Measurement:
     shear_rate: float = 0.0
     viscosity: float = math.nan
     viscosity_error: float = math.nan
+    rotational_temperature: float = math.nan
+    rotational_temperature_error: float = math.nan
 
     @property
     def pressure_tensor(self) -> np.ndarray:
@@ -202,6 +208,10 @@ class Measurement:
         elif box_hits:
             head += f", {box_hits} wall contacts"
         lines = [head, f"temperature            {self.temperature:.6g}"]
+        if np.isfinite(self.rotational_temperature):
+            lines.append(f"rotational temperature "
+                         f"{pm(self.rotational_temperature, self.rotational_temperature_error)}"
+                         f" (ratio {self.rotational_temperature / self.temperature:.4g})")
         if self.area_source != "box":
             where = ("inside closed polygons of wall segments"
                      if self.area_source == "walls" else "given")

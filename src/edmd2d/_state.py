@@ -222,7 +222,7 @@ class EngineState:
                         raise ValueError(f"rough disks do not combine with {name}")
             movable = np.isfinite(mass)
             self.rough_w = np.where(movable, rough.spins, 0.0)
-            self.rough_angle = np.zeros(n)
+            self.rough_angle = rough.angles.copy()
             self.rough_t = np.full(n, float(time))
             inertia = rough.inertia * np.where(movable, mass, 1.0) * rad * rad
             self.rough_inv_inertia = np.where(movable, 1.0 / inertia, 0.0)
@@ -718,6 +718,16 @@ class EngineState:
         bundle = self.rough_bundle()
         assert bundle is not None
         return bundle.angle + bundle.w * (self.time - bundle.t_angle)
+
+    def set_angular_velocities(self, w: np.ndarray) -> None:
+        """Rough disks: give every movable disk the angular velocity ``w`` (checked,
+        user order) at the current time, its angle read forward to now first.  No
+        event changes: contact times do not depend on the spins."""
+        assert self.rough_w is not None and self.rough_angle is not None
+        assert self.rough_t is not None and self.rough_inv_inertia is not None
+        self.rough_angle[:] = self.angles()
+        self.rough_t[:] = self.time
+        self.rough_w[:] = np.where(self.rough_inv_inertia > 0, w[self.order], 0.0)
 
     def rest_bundle(self):
         """The engine's family of disks at rest: ``None`` or a ``layout.Rest``."""

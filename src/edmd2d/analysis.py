@@ -20,13 +20,14 @@ from ._gaps import _boxsize, _min_image
 from ._sums import dot
 from ._validate import as_count, as_float_array, as_positive_float
 from .geometry import Box
-from .measurements import kinetic_temperature
+from .measurements import kinetic_temperature, rotational_temperature
 from .simulation import Simulation
 
 __all__ = [
     "radial_distribution",
     "speed_distribution",
     "maxwell_boltzmann_test",
+    "angular_velocity_distribution",
     "trajectory",
     "mean_squared_displacement",
     "hexatic_order",
@@ -297,6 +298,68 @@ def maxwell_boltzmann_test(source: Simulation | ArrayLike, *, masses: ArrayLike 
     from scipy import stats
 
     return stats.kstest(energy / kt, "expon")
+
+
+def angular_velocity_distribution(sim: Simulation, *, bins: int = 50,
+                                  w_max: float | None = None, scaled: bool = True
+                                  ) -> tuple[np.ndarray, np.ndarray]:
+    """Histogram of the angular velocities of rough disks as a probability density.
+
+    With ``scaled`` (the default) each disk's angular velocity is measured in its own
+    thermal unit, ``w sqrt(I / kT_rot)`` with ``I`` its moment of inertia and
+    ``kT_rot`` the :func:`~edmd2d.measurements.rotational_temperature`: in equilibrium
+    the result is the standard normal density whatever the masses, radii and
+    ``inertia``; a cooling rough gas departs from it (its fourth moment differs from
+    3).
+
+    Parameters
+    ----------
+    sim : Simulation
+        With rough disks (:class:`edmd2d.physics.Rough`); its movable disks count.
+    bins : int, default 50
+    w_max : float, optional
+        The histogram spans ``[-w_max, w_max]``; default the largest ``|w|`` (scaled
+        or not).
+    scaled : bool, default True
+        Scale by ``sqrt(I / kT_rot)``, or give the angular velocities as they are.
+
+    Returns
+    -------
+    w : ndarray, shape (bins,)
+        Bin centres.
+    density : ndarray, shape (bins,)
+        Normalized so that ``sum(density * bin_width) == 1`` over ``[-w_max, w_max]``.
+
+    Raises
+    ------
+    ValueError
+        For smooth disks, or no movable disk.
+
+    Examples
+    --------
+    >>> import edmd2d as ed
+    >>> sim = ed.make_gas(4, 0.2, seed=0, tangential_restitution=1.0,
+    ...                   angular_velocities=[1.0, -1.0, 1.0, 3.0])
+    >>> w, f = angular_velocity_distribution(sim, bins=2, w_max=4.0, scaled=False)
+    >>> w.tolist(), f.tolist()
+    ([-2.0, 2.0], [0.0625, 0.1875])
+    """
+    kt_rot = rotational_temperature(sim)  # (refuses smooth disks)
+    movable = np.isfinite(sim.masses)
+    if not movable.any():
+        raise ValueError("the simulation has no movable disk")
+    bins = as_count("bins", bins, minimum=1)
+    w = sim.angular_velocities[movable]
+    if scaled:
+        inertia = (sim.families["rough"].inertia * sim.masses * sim.radii ** 2)[movable]
+        w = w * np.sqrt(inertia / kt_rot) if kt_rot > 0 else np.zeros_like(w)
+    if w_max is None:
+        top = float(np.abs(w).max())
+        w_max = top if top > 0 else 1.0
+    else:
+        w_max = as_positive_float("w_max", w_max)
+    density, edges = np.histogram(w, bins=bins, range=(-w_max, w_max), density=True)
+    return 0.5 * (edges[1:] + edges[:-1]), density
 
 
 # --------------------------------------------------------------------------- MSD

@@ -29,8 +29,8 @@ if TYPE_CHECKING:  # (for the annotations only: simulation imports this module)
     from .simulation import Simulation
 
 __all__ = ["Measurement", "measure", "Measure", "kinetic_temperature",
-           "degrees_of_freedom", "container_area", "Cooling", "cooling", "profiles",
-           "Profile", "Profiles", "bed", "Bed", "discharge", "Discharge"]
+           "rotational_temperature", "degrees_of_freedom", "container_area", "Cooling",
+           "cooling", "profiles", "Profile", "Profiles", "bed", "Bed", "discharge", "Discharge"]
 
 
 def degrees_of_freedom(sim: Simulation) -> tuple[int, tuple[bool, bool]]:
@@ -109,6 +109,47 @@ def kinetic_temperature(sim: Simulation) -> float:
     total_mass = float(m.sum())
     cm = sum(float(momentum[a]) ** 2 for a in range(2) if conserved[a]) / total_mass
     return (twice_ke - cm) / dof
+
+
+def rotational_temperature(sim: Simulation) -> float:
+    """The rotational temperature of rough disks now: ``kT_rot = sum I w^2 / N`` over
+    the movable disks (2D, ``k_B = 1``).
+
+    A disk turning in the plane has one rotational degree of freedom, so equipartition
+    gives ``<I w^2> = kT``: in equilibrium ``kT_rot`` equals the (translational)
+    :func:`kinetic_temperature`; a rough granular gas cools to a fixed ratio of the two
+    (:func:`edmd2d.theory.rough_hcs_ratio`).  No angular momentum is taken out: walls,
+    and the images of a periodic box, do not conserve it.
+
+    Parameters
+    ----------
+    sim : Simulation
+        With rough disks (:class:`edmd2d.physics.Rough`), read at its current time.
+
+    Returns
+    -------
+    float
+        ``kT_rot``, or ``nan`` without movable disks.
+
+    Raises
+    ------
+    ValueError
+        For smooth disks, which do not turn.
+
+    Examples
+    --------
+    >>> import edmd2d as ed
+    >>> sim = ed.make_gas(4, 0.2, seed=0, tangential_restitution=1.0,
+    ...                   angular_velocities=2.0, inertia=0.5)
+    >>> rotational_temperature(sim)  # I w^2 = 0.5 * 1 * 0.5**2 * 4
+    0.5
+    """
+    if "rough" not in sim.families:
+        raise ValueError("the disks are smooth and do not turn: a rotational temperature "
+                         "needs rough disks (tangential_restitution)")
+    movable = np.isfinite(sim.masses)
+    n = int(movable.sum())
+    return 2.0 * sim.rotational_energy() / n if n else math.nan
 
 
 def measure(sim: Simulation, duration: float, *, blocks: int = 10,
@@ -474,6 +515,8 @@ def _edge(sim, movable: np.ndarray) -> dict:
         "collisions": counts.collisions,
         "wall_collisions": counts.wall_collisions,
     }
+    if "rough" in sim.families:
+        edge["rotational_temperature"] = rotational_temperature(sim)
     shear = sim.families.get("shear")
     if shear is not None:
         # (Sheared: the kinetic stress integrated exactly over every flight.)
@@ -581,6 +624,12 @@ def _from_edges(edges: list, tau, duration: float, *, n: int, n_all: int, dof: i
             sheared = {"shear_rate": rate_shear, "viscosity": -p_xy / rate_shear,
                        "viscosity_error": _stderr(p_tensor_block[:, 0, 1]) / abs(rate_shear)}
     mean_speed = float(np.mean(speeds))
+    rotational: dict = {}
+    if all("rotational_temperature" in e for e in edges):
+        # (Rough disks: as the temperature, the mean of the boundaries, by blocks.)
+        rot = np.array([e["rotational_temperature"] for e in edges])
+        rotational = {"rotational_temperature": float(np.mean(rot)),
+                      "rotational_temperature_error": _stderr(0.5 * (rot[1:] + rot[:-1]))}
     return Measurement(
         duration=float(duration),
         collisions=int(n_coll.sum()),
@@ -618,6 +667,7 @@ def _from_edges(edges: list, tau, duration: float, *, n: int, n_all: int, dof: i
         pressure_xy=p_xy,
         pressure_tensor_error=_frozen(_stderr(p_tensor_block)),
         **sheared,
+        **rotational,
     )
 
 
@@ -709,7 +759,13 @@ class Cooling:
         :func:`kinetic_temperature` (mean kinetic energy per degree of freedom, with
         the conserved centre-of-mass motion left out).
     dissipated_energy : ndarray, shape (K,)
-        Kinetic energy lost in collisions since the start.
+        Kinetic energy lost in collisions since the start (for rough disks, the
+        rotational energy they took too).
+    rotational_energy : ndarray, shape (K,)
+        Rough disks (:class:`edmd2d.physics.Rough`): the rotational kinetic energy
+        ``sum I w^2 / 2``; zero for smooth disks.
+    rotational_temperature : ndarray, shape (K,)
+        Rough disks: :func:`rotational_temperature`; ``nan`` for smooth disks.
     """
 
     time: np.ndarray
@@ -717,6 +773,8 @@ class Cooling:
     kinetic_energy: np.ndarray
     temperature: np.ndarray
     dissipated_energy: np.ndarray
+    rotational_energy: np.ndarray
+    rotational_temperature: np.ndarray
 
 
 def cooling(sim: Simulation, times: ArrayLike) -> Cooling:
@@ -733,8 +791,9 @@ def cooling(sim: Simulation, times: ArrayLike) -> Cooling:
     Returns
     -------
     Cooling
-        Time, collisions per disk, kinetic energy, granular temperature and
-        dissipated energy at each sampling time.  For a homogeneous gas of
+        Time, collisions per disk, kinetic energy, granular temperature,
+        dissipated energy and, for rough disks, the rotational energy and temperature
+        at each sampling time.  For a homogeneous gas of
         restitution ``e``, ``T = T0 exp(-(1 - e^2) C / 2)`` against the collisions per
         disk ``C`` and Haff's law ``T = T0 / (1 + t / t_H)^2`` against time (see
         ``docs/restitution.md``).
@@ -752,6 +811,7 @@ def cooling(sim: Simulation, times: ArrayLike) -> Cooling:
     if t[0] < sim.time:
         raise ValueError(f"times start at {t[0]}, before the simulation's time {sim.time}")
     n_all = sim.n
+    rough = "rough" in sim.families
     rows = []
     c0 = e0 = None
     for tk in t:
@@ -760,9 +820,10 @@ def cooling(sim: Simulation, times: ArrayLike) -> Cooling:
         if c0 is None or e0 is None:  # (the first sample: both are set together)
             c0, e0 = c, lost
         rows.append((2.0 * (c - c0) / n_all, sim.kinetic_energy(), kinetic_temperature(sim),
-                     lost - e0))
+                     lost - e0, sim.rotational_energy(),
+                     rotational_temperature(sim) if rough else math.nan))
     cols = np.array(rows).T
-    return Cooling(t.copy(), cols[0], cols[1], cols[2], cols[3])
+    return Cooling(t.copy(), *cols)
 
 
 # --------------------------------------------------------------------------- profiles

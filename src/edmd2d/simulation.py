@@ -769,6 +769,40 @@ class Simulation(SimulationBase):
             return state.to_user(np.zeros(len(state.S)))
         return state.to_user(state.angles())
 
+    def set_angular_velocities(self, angular_velocities: ArrayLike) -> None:
+        """Rough disks: replace every angular velocity at the current time (each
+        angle read forward to now first; immovable disks do not turn and keep 0).
+
+        Parameters
+        ----------
+        angular_velocities : float or array_like, shape (N,)
+            Counter-clockwise, in the user's disk order; one number for all.
+
+        Raises
+        ------
+        ValueError
+            For smooth disks, or values that are not finite or of the wrong shape.
+            The simulation is left unchanged.
+
+        Notes
+        -----
+        No predicted event changes: contact times do not depend on the spins.
+
+        Examples
+        --------
+        >>> import edmd2d as ed
+        >>> sim = ed.make_gas(4, 0.2, seed=0, tangential_restitution=1.0)
+        >>> sim.set_angular_velocities([1.0, 0.0, -1.0, 2.0])
+        >>> sim.angular_velocities.tolist()
+        [1.0, 0.0, -1.0, 2.0]
+        """
+        state = self._state
+        if state.rough_w is None:
+            raise ValueError("the disks are smooth and do not turn: angular velocities "
+                             "need rough disks (tangential_restitution)")
+        state.set_angular_velocities(per_disk("angular_velocities", angular_velocities,
+                                              len(self)))
+
     def rotational_energy(self) -> float:
         """The rotational kinetic energy ``sum I w^2 / 2`` (zero for smooth disks).
 

@@ -136,7 +136,7 @@ def test_the_built_in_families_and_their_keywords():
                                                "tangential_restitution", "friction",
                                                "wall_tangential_restitution",
                                                "wall_friction", "inertia",
-                                               "angular_velocities"]
+                                               "angular_velocities", "angles"]
     assert not physics.Resting.built_in  # (a family of the registry, checked always)
     assert physics.Resting.always
     for name in ("restitution", "wall_restitution", "tc", "gravity", "thermostat",

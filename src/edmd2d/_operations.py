@@ -406,11 +406,13 @@ class Snapshot:
     families : dict
         The registered physics families (:attr:`Simulation.families
         <edmd2d.Simulation.families>`).
+    angles, angular_velocities : ndarray, shape (N,)
+        Rough disks: each disk's angle and angular velocity (zero for smooth disks).
     """
 
     __slots__ = ("time", "positions", "unwrapped_positions", "velocities", "radii",
                  "masses", "species", "box", "walls", "open_walls", "counts",
-                 "shear_offset", "families")
+                 "shear_offset", "families", "angles", "angular_velocities")
 
     def __init__(self, sim: Simulation) -> None:
         self.time = sim.time
@@ -426,6 +428,8 @@ class Snapshot:
         self.counts = sim.counts
         self.shear_offset = sim.shear_offset
         self.families = sim.families
+        self.angles = sim.angles
+        self.angular_velocities = sim.angular_velocities
 
     def __len__(self) -> int:
         return len(self.positions)

@@ -691,6 +691,14 @@ def _box_text(width: float, height: float, periodic) -> str:
     return f"{width:.6g} x {height:.6g}, {kind}"
 
 
+def _family_text(name: str, family) -> str:
+    """A registered physics family by its name and the single numbers it logs
+    (``rough tangential_restitution 0.5, friction inf, ...``)."""
+    numbers = [f"{key} {float(value[0]):g}" for key, value in family.log().items()
+               if np.size(value) == 1]
+    return " ".join([name.replace("_", " "), ", ".join(numbers)]).strip()
+
+
 def _checkpoint_info(path: Path) -> str:
     meta = _read_checkpoint_metadata(path)
     sim = _load_checkpoint(path)
@@ -708,6 +716,7 @@ def _checkpoint_info(path: Path) -> str:
         physics.append(f"thermostat kT={sim.thermostat[0]:g}, rate={sim.thermostat[1]:g}")
     if sim.wall_temperatures:
         physics.append(f"heated walls {sim.wall_temperatures}")
+    physics += [_family_text(name, family) for name, family in sim.families.items()]
     lines = [
         ("time", f"{sim.time:.10g}"),
         ("disks", f"{len(sim)}"),

@@ -43,7 +43,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import models as _models
-from ._validate import about, as_float_array
+from ._validate import about, as_float_array, per_disk
 from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, Box
 
 __all__ = ["Keyword", "System", "Family", "FAMILIES", "KEYWORDS", "register", "unregister",
@@ -67,8 +67,9 @@ class Keyword:
         What a configuration file gives: ``"coefficient"`` (a number in ``(0, 1]``),
         ``"coefficients"`` (one, or a square table per pair of species),
         ``"duration"`` (a number ``>= 0``), ``"vector"`` (two numbers),
-        ``"switch"`` (true or false), ``"length"`` (a number ``> 0``), ``"rate"`` (a
-        number of either sign) or ``"walls"``
+        ``"switch"`` (true or false), ``"length"`` (a number ``> 0``),
+        ``"nonnegative"`` (a number ``>= 0``), ``"rate"`` (a number of either sign) or
+        ``"walls"``
         (a table ``{wall = kT}``); ``""`` for a keyword that configuration files do not
         take.
     doc : str
@@ -1015,22 +1016,26 @@ class Rough(Family):
         ``q`` of each disk, in ``(0, 1]``.
     spins : ndarray, shape (N,)
         The angular velocities at the start.
+    angles : ndarray, shape (N,)
+        The angles at the start (counter-clockwise, in radians).
     """
 
     name: ClassVar[str] = "rough"
     keywords: ClassVar[tuple[Keyword, ...]] = (
         Keyword("tangential_restitution", None, "rate",
                 "beta in [-1, 1]: -1 smooth (default), +1 perfectly rough"),
-        Keyword("friction", None, "",
+        Keyword("friction", None, "nonnegative",
                 "Coulomb's coefficient of disk-disk contacts, >= 0 (default: no limit)"),
-        Keyword("wall_tangential_restitution", None, "",
+        Keyword("wall_tangential_restitution", None, "rate",
                 "beta at walls (default: the disks')"),
-        Keyword("wall_friction", None, "", "Coulomb's coefficient at walls"),
-        Keyword("inertia", None, "",
+        Keyword("wall_friction", None, "nonnegative", "Coulomb's coefficient at walls"),
+        Keyword("inertia", None, "coefficient",
                 "q in (0, 1], per disk or for all: the moment of inertia q m r^2 "
                 "(default 1/2)"),
-        Keyword("angular_velocities", None, "",
+        Keyword("angular_velocities", None, "rate",
                 "the angular velocities at the start, per disk or for all (default 0)"),
+        Keyword("angles", None, "rate",
+                "the angles at the start, per disk or for all (default 0)"),
     )
 
     beta: float
@@ -1039,6 +1044,7 @@ class Rough(Family):
     wall_friction: float
     inertia: np.ndarray
     spins: np.ndarray
+    angles: np.ndarray
 
     @classmethod
     def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
@@ -1046,7 +1052,7 @@ class Rough(Family):
             tangential_restitution: float | None = None, friction: float | None = None,
             wall_tangential_restitution: float | None = None,
             wall_friction: float | None = None, inertia: Any = None,
-            angular_velocities: Any = None) -> Rough | None:
+            angular_velocities: Any = None, angles: Any = None) -> Rough | None:
         """``None`` (smooth disks) or rough disks.
 
         Parameters
@@ -1055,7 +1061,7 @@ class Rough(Family):
             Its number of disks.
         tangential_restitution, friction, wall_tangential_restitution, wall_friction :
             float, optional
-        inertia, angular_velocities : float or array_like, optional
+        inertia, angular_velocities, angles : float or array_like, optional
 
         Returns
         -------
@@ -1086,7 +1092,8 @@ class Rough(Family):
                 values:
             given = [k for k, v in (("friction", friction), ("wall_friction", wall_friction),
                                     ("inertia", inertia),
-                                    ("angular_velocities", angular_velocities))
+                                    ("angular_velocities", angular_velocities),
+                                    ("angles", angles))
                      if v is not None]
             if given:
                 with about(given[0]):
@@ -1097,19 +1104,16 @@ class Rough(Family):
         q = np.full(n, 0.5)
         if inertia is not None:
             with about("inertia"):
-                q = np.broadcast_to(as_float_array(
-                    "inertia", inertia, (n,) if np.ndim(inertia) else ()), (n,)).copy()
+                q = per_disk("inertia", inertia, n)
                 if not np.all((q > 0.0) & (q <= 1.0)):
                     raise ValueError(f"inertia must lie in (0, 1], got {inertia!r}")
-        spins = np.zeros(n)
-        if angular_velocities is not None:
-            with about("angular_velocities"):
-                spins = np.broadcast_to(as_float_array(
-                    "angular_velocities", angular_velocities,
-                    (n,) if np.ndim(angular_velocities) else ()), (n,)).copy()
+        spins, turned = (np.zeros(n) if value is None else per_disk(name, value, n)
+                         for name, value in (("angular_velocities", angular_velocities),
+                                             ("angles", angles)))
         return cls(beta, values.get("friction", math.inf),
                    values.get("wall_tangential_restitution", beta),
-                   values.get("wall_friction", values.get("friction", math.inf)), q, spins)
+                   values.get("wall_friction", values.get("friction", math.inf)), q, spins,
+                   turned)
 
     def log(self) -> dict:
         """The coefficients and each disk's ``inertia`` (a GSD frame holds the angular

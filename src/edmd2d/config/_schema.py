@@ -196,6 +196,7 @@ _KINDS = {
     "vector": _vector(),
     "switch": _switch,
     "length": _number(0.0, lo_open=True),
+    "nonnegative": _number(0.0),
     "rate": _number(),
 }
 

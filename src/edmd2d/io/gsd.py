@@ -222,19 +222,28 @@ def _frame(sim, writer: Writer):
     if "resting" in sim.families:  # (a per-particle quantity, as HOOMD logs them)
         frame.log["particles/edmd2d/resting"] = sim.resting.astype(np.uint8)
     if "rough" in sim.families:
-        # HOOMD's orientation (a rotation by the angle about z) and principal moments
-        # of inertia; the angular velocity as a per-particle quantity.
-        half = 0.5 * sim.angles
+        # HOOMD's orientation (a rotation by the angle about z), principal moments of
+        # inertia and angular momentum quaternion P = 2 q (0, 0, 0, I w) (Kamberaj's
+        # form, HOOMD's convention: (-2 s L, 0, 0, 2 c L) for q = (c, 0, 0, s)); the
+        # angle and angular velocity in float64 as per-particle quantities.
+        angles = sim.angles
+        c, s = np.cos(0.5 * angles), np.sin(0.5 * angles)
         orientation = np.zeros((sim.n, 4), np.float32)
-        orientation[:, 0] = np.cos(half)
-        orientation[:, 3] = np.sin(half)
+        orientation[:, 0] = c
+        orientation[:, 3] = s
         frame.particles.orientation = orientation
         inertia = np.zeros((sim.n, 3), np.float32)
         q = sim.families["rough"].inertia
-        inertia[:, 2] = np.where(np.isfinite(masses), q * masses * sim.radii ** 2, 0.0)
+        moment = np.where(np.isfinite(masses), q * masses * sim.radii ** 2, 0.0)
+        inertia[:, 2] = moment
         frame.particles.moment_inertia = inertia
-        frame.log["particles/edmd2d/angular_velocity"] = np.asarray(sim.angular_velocities,
-                                                                    np.float64)
+        spin = sim.angular_velocities
+        angmom = np.zeros((sim.n, 4), np.float32)
+        angmom[:, 0] = -2.0 * s * moment * spin
+        angmom[:, 3] = 2.0 * c * moment * spin
+        frame.particles.angmom = angmom
+        frame.log["particles/edmd2d/angular_velocity"] = np.asarray(spin, np.float64)
+        frame.log["particles/edmd2d/angle"] = np.asarray(angles, np.float64)
     return frame
 
 
@@ -346,6 +355,12 @@ def read(path: str | os.PathLike[str], frame: int = -1, *, radius_scale: float =
         physics.setdefault("gravity", log["edmd2d/gravity"])
     if "particles/edmd2d/angular_velocity" in log:
         physics.setdefault("angular_velocities", log["particles/edmd2d/angular_velocity"])
+    if "particles/edmd2d/angle" in log:
+        physics.setdefault("angles", log["particles/edmd2d/angle"])
+    elif "edmd2d/rough/inertia" in log and f.particles.orientation is not None:
+        # (Rough disks written before the angle was logged: from the orientation.)
+        quat = np.asarray(f.particles.orientation, np.float64)
+        physics.setdefault("angles", 2.0 * np.arctan2(quat[:, 3], quat[:, 0]))
     for name, family in _physics.FAMILIES.items():
         prefix = f"edmd2d/{name}/"
         logged = {key[len(prefix):]: value for key, value in log.items()

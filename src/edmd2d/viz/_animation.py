@@ -80,7 +80,7 @@ def animate(
     **style
         Further keywords of :func:`draw` (``cmap``, ``vmin``, ``vmax``, ``color``,
         ``edgecolor``, ``linewidth``, ``wall_color``, ``colorbar``, ``margin``,
-        ``figsize``).
+        ``figsize``, ``angle_marks``).
 
     Returns
     -------

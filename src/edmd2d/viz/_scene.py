@@ -51,6 +51,7 @@ def draw(
     show_time: bool = False,
     margin: float = 0.02,
     figsize: tuple[float, float] | None = None,
+    angle_marks: bool | None = None,
 ) -> Axes:
     """Draw the current state of ``sim`` (a still frame).
 
@@ -93,13 +94,17 @@ def draw(
         Space around the box, as a fraction of its larger side.
     figsize : (float, float), optional
         Figure size in inches when ``ax`` is None.
+    angle_marks : bool, optional
+        Rough disks (:class:`edmd2d.physics.Rough`): draw a radius of each disk at its
+        angle, so that the turning shows (a line from the centre to the rim, in
+        ``edgecolor``).  Default: for rough disks, up to 3000 disks.
 
     Returns
     -------
     matplotlib.axes.Axes
         The axes drawn on.  Its collections carry the gids ``"edmd2d-disks"`` (the
         :class:`~matplotlib.collections.EllipseCollection`), ``"edmd2d-walls"`` and
-        ``"edmd2d-box"``.
+        ``"edmd2d-box"`` (and ``"edmd2d-angles"``, the angle marks).
 
     Raises
     ------
@@ -120,7 +125,7 @@ def draw(
     scene = _Scene(
         sim, ax, color_by=color_by, cmap=cmap, vmin=vmin, vmax=vmax, color=color,
         edgecolor=edgecolor, linewidth=linewidth, wall_color=wall_color, colorbar=colorbar,
-        show_time=show_time, margin=margin, figsize=figsize,
+        show_time=show_time, margin=margin, figsize=figsize, angle_marks=angle_marks,
     )
     scene.update()
     return scene.ax
@@ -149,6 +154,7 @@ class _Scene:
         trail: int = 0,
         trail_disks=None,
         trail_color="k",
+        angle_marks: bool | None = None,
     ) -> None:
         if not isinstance(sim, (Simulation, Snapshot)):
             raise TypeError(f"sim must be an edmd2d.Simulation, got {type(sim).__name__}")
@@ -207,6 +213,20 @@ class _Scene:
         self.disks.set_gid("edmd2d-disks")
         ax.add_collection(self.disks, autolim=False)
         self.disks.set_clip_box(clip)
+
+        rough = "rough" in getattr(sim, "families", {})
+        if angle_marks is None:
+            angle_marks = rough and n <= _OUTLINE_MAX_N
+        elif angle_marks and not rough:
+            raise ValueError("angle_marks needs rough disks (tangential_restitution): "
+                             "smooth disks do not turn")
+        self.marks = None
+        if angle_marks:
+            self.marks = LineCollection([], colors=edgecolor,
+                                        linewidths=max(linewidth, 0.6), zorder=2.2)
+            self.marks.set_gid("edmd2d-angles")
+            ax.add_collection(self.marks, autolim=False)
+            self.marks.set_clip_box(clip)
 
         self.trails = None
         if self._trail_sel is not None:
@@ -277,6 +297,13 @@ class _Scene:
         self.disks.set_heights(diam)
         self._color.apply(self.disks, sim, idx)
         changed: list[Artist] = [self.disks]
+        if self.marks is not None:
+            # A radius of each drawn disk (and image) at the disk's angle.
+            theta = np.asarray(sim.angles)[idx]
+            rim = offsets + 0.5 * diam[:, None] * np.column_stack([np.cos(theta),
+                                                                   np.sin(theta)])
+            self.marks.set_segments(list(np.stack([offsets, rim], axis=1)))
+            changed.append(self.marks)
         if self._style_open_walls():
             changed.append(self.walls)
         if self.trails is not None:

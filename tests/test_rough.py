@@ -98,6 +98,49 @@ def test_rough_segments_as_the_reference(seed):
     assert sim.dissipated_energy() == pytest.approx(ref.dissipated, abs=1e-9)
 
 
+@pytest.mark.filterwarnings("ignore:make_gas. the wall segments crossed")
+@pytest.mark.parametrize("seed", range(8))
+def test_rough_disks_under_gravity_as_the_reference(seed):
+    # Parabolic flights between rough contacts: a walled box, gravity straight down or
+    # tilted, a wall segment, an immovable peg in half the cases; elastic, or
+    # inelastic with the TC model (resting off: rough disks do not come to rest).
+    rng = np.random.default_rng(seed_of(970) + seed)
+    walls = [ed.Wall((1.0, 2.0), (4.0, 1.0))]
+    gas = ed.make_gas(12, 0.2, periodic=False, walls=walls, aspect=0.8,
+                      seed=int(rng.integers(1 << 30)))
+    mass = np.ones(gas.n)
+    vel = gas.velocities.copy()
+    if seed % 2:
+        mass[0] = np.inf
+        vel[0] = 0.0
+    rough = dict(tangential_restitution=float(rng.choice([1.0, 0.3, -0.5])),
+                 friction=float(rng.choice([math.inf, 0.25])),
+                 wall_tangential_restitution=float(rng.choice([0.8, 0.0])),
+                 angular_velocities=2.0 * rng.normal(size=gas.n))
+    model = dict(gravity=(0.0, -1.0) if seed < 4 else (0.3, -1.0))
+    off = {}
+    if seed % 4 >= 2:
+        model.update(restitution=0.85, wall_restitution=0.9, tc=0.02)
+        off = dict(resting=False)  # (the reference has no resting unless given one)
+    sim = ed.Simulation(gas.positions, vel, gas.radii, mass, box=gas.box,
+                        walls=walls, **rough, **model, **off)
+    sim._record_events(10_000)
+    ref = ReferenceSimulation(gas.positions, vel, gas.radii, mass, box=gas.box,
+                              walls=walls, **rough, **model)
+    start = sim.total_energy()
+    sim.advance(until=8.0, collisions=15)
+    ref.advance(until=8.0, collisions=15)
+    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
+    assert [e[1:] for e in got] == [e[1:] for e in want]
+    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-6)
+    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-6)
+    np.testing.assert_allclose(sim.angular_velocities, ref.angular_velocities, rtol=0,
+                               atol=1e-6)
+    np.testing.assert_allclose(sim.angles, ref.angles, rtol=0, atol=1e-6)
+    assert sim.total_energy() + sim.dissipated_energy() == pytest.approx(start, rel=1e-11)
+    assert sim.dissipated_energy() == pytest.approx(ref.dissipated, abs=1e-9)
+
+
 @pytest.mark.parametrize("seed", range(6))
 def test_thermostat_draws_the_spins_as_the_reference(seed):
     # Andersen redraws of velocity and spin, from one seeded stream in the same order,
@@ -171,7 +214,8 @@ def test_smooth_disks_are_left_as_they_were():
     (dict(tangential_restitution=0.5, inertia=0.0), "inertia"),
     (dict(tangential_restitution=0.5, inertia=1.2), "inertia"),
     (dict(tangential_restitution=0.5, angular_velocities=[1.0, 2.0]), "angular_velocities"),
-    (dict(tangential_restitution=0.5, gravity=(0.0, -1.0), periodic=False), "gravity"),
+    (dict(tangential_restitution=0.5, gravity=(0.0, -1.0), periodic=False,
+          restitution=0.9), "resting=False"),
     (dict(tangential_restitution=0.5, shear_rate=0.1), "shear"),
 ])
 def test_bad_rough_input_is_refused(kwargs, match):

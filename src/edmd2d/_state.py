@@ -215,11 +215,16 @@ class EngineState:
         self.rough_w = self.rough_angle = self.rough_t = self.rough_inv_inertia = None
         if rough is not None:
             with about("tangential_restitution"):
-                others = {"growth": growth, "gravity": gravity,
-                          "resting": families.get("resting"), "shear": families.get("shear")}
+                others = {"growth": growth, "resting": families.get("resting"),
+                          "shear": families.get("shear")}
                 for name, other in others.items():
-                    if other is not None:
-                        raise ValueError(f"rough disks do not combine with {name}")
+                    if other is None:
+                        continue
+                    if name == "resting":
+                        raise ValueError(
+                            "rough disks do not come to rest (yet): under gravity with "
+                            "an inelastic model, give resting=False")
+                    raise ValueError(f"rough disks do not combine with {name}")
             movable = np.isfinite(mass)
             self.rough_w = np.where(movable, rough.spins, 0.0)
             self.rough_angle = rough.angles.copy()

@@ -1006,8 +1006,9 @@ class Rough(Family):
     energy for elastic collisions with ``beta = +-1``; what a collision takes is
     dissipated.  Where the TC model makes a contact elastic it is also smooth; the
     thermostat draws the spin with the velocity, at its temperature; a heated wall
-    sets the velocity only.  Rough disks do not combine with gravity, growth, shear
-    or disks that come to rest (yet).
+    sets the velocity only.  Under gravity the flights are parabolas as for smooth
+    disks; rough disks do not combine with growth, shear or disks that come to rest
+    (yet: an inelastic rough gas under gravity needs ``resting=False``).
 
     Attributes
     ----------

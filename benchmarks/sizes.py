@@ -12,7 +12,12 @@ what that costs, on gases of ``N`` disks at packing fraction 0.35 in a periodic 
 - ``50:50``: half the disks (by number) ``q`` times larger, ``q`` = 2, 5, 10;
 - ``decade``: radii spread log-uniformly over a decade, 0.5 to 5.
 
-    python benchmarks/sizes.py --n 10000 --reps 3
+    python benchmarks/sizes.py --n 10000 --reps 3 [--grid auto,uniform]
+
+``--grid`` runs each mixture on each of the given grids (``Simulation(grid=...)``:
+``auto`` lists the wide disks in the cells near them where that pays, ``uniform``
+sizes every cell for the largest disk); the equal disks run once, on the uniform grid
+that ``auto`` keeps for them.
 
 Each system is first run ``advance(collisions=2 N)`` untimed (the random start
 relaxes); then, round after round, every system takes one turn of
@@ -53,13 +58,22 @@ def systems(n: int, rng: np.random.Generator) -> dict[str, np.ndarray]:
 
 def main() -> None:
     parser = turns_parser(__doc__, reps=3, reps_help="rounds of turns")
+    parser.add_argument("--grid", default="auto",
+                        help="comma-separated grids to run each mixture on (auto, uniform)")
     args = parser.parse_args()
     n = args.n
+    grids = args.grid.split(",")
     sims = {}
     for name, radii in systems(n, np.random.default_rng(1)).items():
-        sim = ed.random_gas(n, PACKING, radii=radii, seed=1)
-        sim.advance(collisions=2 * n)
-        sims[name] = sim
+        gas = ed.random_gas(n, PACKING, radii=radii, seed=1)
+        for grid in (["uniform"] if name == "equal" else grids):
+            sim = ed.Simulation(gas.positions, gas.velocities, gas.radii, box=gas.box,
+                                grid=grid)
+            sim.advance(collisions=2 * n)
+            label = name if name == "equal" or len(grids) == 1 else f"{name}, {grid}"
+            if grid == "auto" and sim._state.wide is not None:
+                label += f" [{len(sim._state.wide.disk)} wide]"
+            sims[label] = sim
     per_turn = max(1, int(args.k * n))
     rates: dict[str, list[float]] = {name: [] for name in sims}
     for _ in range(args.reps):

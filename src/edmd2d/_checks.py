@@ -81,6 +81,24 @@ def as_cell_size(cell_size, rad: np.ndarray) -> float | None:
     return cell_size
 
 
+def check_grid(grid, rad: np.ndarray, cell_size, growth, families: dict) -> None:
+    """``grid`` is one of "auto", "uniform" and "wide", and "wide" has wide disks to
+    list (radii of two sizes at least) and nothing that keeps them out."""
+    if not isinstance(grid, str) or grid not in ("auto", "uniform", "wide"):
+        raise ValueError(f"grid must be 'auto', 'uniform' or 'wide', got {grid!r}")
+    if grid != "wide":
+        return
+    others = [name for name, other in (("cell_size", cell_size), ("growth", growth),
+                                       ("shear", families.get("shear")),
+                                       ("resting", families.get("resting")))
+              if other is not None]
+    if others:
+        raise ValueError(f"grid='wide' does not combine with {others[0]}")
+    if float(rad.max()) == float(rad.min()):
+        raise ValueError("grid='wide' needs disks of more than one size (the wider ones "
+                         "are listed in the cells near them)")
+
+
 def check_walls_in_box(box, walls) -> None:
     """Every end point of every wall segment lies in the box."""
     w, h = box.width, box.height

@@ -29,6 +29,7 @@ from ._engine import queue as _queue
 from ._engine import response as _response
 from ._engine import resting as _resting
 from ._engine import sheared as _sheared
+from ._engine import wide as _wide
 from ._sums import dot
 from ._validate import about, as_generator, indices_where
 from .geometry import BOX_WALL_EQUATIONS, MAX_LENGTH
@@ -139,7 +140,7 @@ class EngineState:
     recorded: list[np.ndarray]
 
     def __init__(self, box, walls, pos, vel, rad, mass, time, *, species, model, gravity,
-                 growth, cell_size, families, wall_open=None) -> None:
+                 growth, cell_size, families, wall_open=None, grid="auto") -> None:
         n = len(pos)
         self.box = box
         self.walls = tuple(walls)
@@ -177,6 +178,8 @@ class EngineState:
         self.wall_open = (np.zeros(len(self.walls), bool) if wall_open is None
                           else np.array(wall_open, bool))
         self.cell_size = cell_size
+        # "auto" (wide disks where they pay, see _engine/wide.py), "uniform" or "wide".
+        self.grid_mode = grid
         self.growth = None if growth is None else np.array([growth.rate, self.time])
         # Lees-Edwards boundaries (the registered family "shear"): the clock of the
         # images' offset and the integrals of the kinetic stress (see
@@ -301,6 +304,8 @@ class EngineState:
             state.setdefault(name, None)  # (saved before boxes could be sheared)
         state.setdefault("helfand_sums", None)  # (saved before the Helfand moments)
         state.setdefault("edits", 0)
+        state.setdefault("wide", None)  # (saved before wide disks: the uniform grid)
+        state.setdefault("grid_mode", "auto")
         for name in ("rough_w", "rough_angle", "rough_t", "rough_inv_inertia"):
             state.setdefault(name, None)  # (saved before disks could spin)
         state["log_capacity"] = 0  # (a copy does not stream)
@@ -328,6 +333,9 @@ class EngineState:
         (:meth:`time_of_diameter` of it)."""
         self.grid_dmax = float(dmax)
         width, height = self.box.width, self.box.height
+        narrow = self.narrow_diameter(cell_size)
+        if narrow is not None:  # (the cells hold the narrow disks; wider ones are wide)
+            dmax = narrow
         side_min = dmax * (1.0 + _CELL_MARGIN)
         if cell_size is None:
             side = max(side_min, math.sqrt(width * height / (2.0 * len(pos))))
@@ -369,6 +377,30 @@ class EngineState:
             if len(closed) == 0:
                 start = np.zeros(ncx * ncy + 1, np.int32)
             self.wstart, self.wwall, self.wsx, self.wsy = start, closed[wall], sx, sy
+        self.wide = None
+        if narrow is not None:
+            self.wide = _wide.allocate(self.S[:, _layout.R], narrow, self.gi, self.gf,
+                                       reach)
+            _wide.fill(self.S, self.E, self.gi, self.gf, self.wide, self.head, self.nxt,
+                       self.prv)
+
+    def narrow_diameter(self, cell_size: float | None) -> float | None:
+        """The largest diameter the grid's cells are sized for, where disks wider than
+        it are listed in their footprints (:mod:`._engine.wide`); ``None`` for the
+        uniform grid (a ``cell_size`` given, growth, shear, disks at rest, or radii
+        too alike for it to pay)."""
+        if (self.grid_mode == "uniform" or cell_size is not None or self.growth is not None
+                or self.shear is not None or "resting" in self.families):
+            return None
+        box = self.box
+        narrow = _wide.choose(self.S[:, _layout.R], box.width, box.height, box.periodic,
+                              _CELL_MARGIN, force=self.grid_mode == "wide")
+        if narrow is None and self.grid_mode == "wide":
+            with about("grid"):
+                raise ValueError("grid='wide' needs a periodic box longer than the "
+                                 "widest disk's footprint (its diameter, a narrow "
+                                 "diameter and two cells)")
+        return narrow
 
     def first_overlap_across(self, pos: np.ndarray, rad: np.ndarray) -> tuple:
         """Under shear: the first pair ``(i, j, distance)`` of a disk of the bottom row
@@ -398,6 +430,9 @@ class EngineState:
         )
         if i < 0 and self.shear is not None:
             i, j, dist = self.first_overlap_across(pos, rad)
+        if i < 0 and self.wide is not None:
+            i, j, dist = _wide.first_overlap(pos, rad, self.gi, self.gf, self.head,
+                                             self.nxt, self.wide, OVERLAP_TOL)
         if i >= 0:
             what = "its own periodic image" if i == j else f"disk {j}"
             contact = rad[i] + rad[j]
@@ -411,11 +446,35 @@ class EngineState:
             pos, rad, self.gf, self.E[:, _layout.CELL], self.wa, self.wb,
             self.wstart, self.wwall, self.wsx, self.wsy, OVERLAP_TOL,
         )
+        if i < 0 and self.wide is not None:
+            i, w, dist = self.first_wide_wall_overlap(pos, rad)
         if i >= 0:
             raise ValueError(
                 f"positions: disk {i} overlaps walls[{w}] (distance {dist:.17g} < "
                 f"radius {rad[i]:.17g}, by {1.0 - dist / rad[i]:.3g} of it)"
             )
+
+    def first_wide_wall_overlap(self, pos: np.ndarray, rad: np.ndarray) -> tuple:
+        """The first wide disk and wall segment (or an image of it) that overlap, as
+        ``(i, w, distance)`` (``(-1, -1, 0.0)``: none): every pair examined (a wide
+        disk reaches beyond the cell whose segments the grid's check reads)."""
+        assert self.wide is not None
+        wide = self.wide.disk
+        a, b = self.wa[None, :, :], self.wb[None, :, :]
+        shifts = [(sx, sy) for sx in ((-1, 0, 1) if self.box.periodic[0] else (0,))
+                  for sy in ((-1, 0, 1) if self.box.periodic[1] else (0,))]
+        for sx, sy in shifts:
+            p = pos[wide, None, :] - np.array([sx * self.box.width, sy * self.box.height])
+            ab = b - a
+            u = np.clip(np.einsum("ijk,ijk->ij", p - a, ab)
+                        / np.einsum("ijk,ijk->ij", ab, ab), 0.0, 1.0)
+            dist = np.hypot(*np.moveaxis(p - (a + u[..., None] * ab), -1, 0))
+            bad = np.argwhere((dist < rad[wide, None] * (1.0 - OVERLAP_TOL))
+                              & ~self.wall_open[None, :])
+            if len(bad):
+                k, w = bad[0]
+                return int(wide[k]), int(w), float(dist[k, w])
+        return -1, -1, 0.0
 
     # ------------------------------------------------------------------ growth
     def growth_factor(self, t: float) -> float:
@@ -705,7 +764,7 @@ class EngineState:
             families.contact, families.heated, families.thermostat, families.uniforms,
             self.gravity_bundle(), self.growth_bundle(), rest, self.shear_bundle(),
             None if self.helfand_sums is None else _layout.Helfand(self.helfand_sums),
-            self.rough_bundle(),
+            self.rough_bundle(), self.wide,
         )
 
     def rough_bundle(self):
@@ -1053,6 +1112,10 @@ class EngineState:
         _, nxt, prv, times, _, _ = _layout.row_views(state, table)
         head = np.empty_like(self.head)
         _grid.build_lists(table[:, _layout.CELL], head, nxt, prv)
+        wide = self.wide
+        if wide is not None:  # (its nodes name wide indices, which keep their disks)
+            wide = wide._replace(index=wide.index[perm], disk=inv[wide.disk])
+            _wide.detach(table, wide, head, nxt, prv)
         # (The queue times are passed twice, as the loop does.)
         _queue.build(self.time, times, times, table, hv, qhead, qs, qf)
         model = None if self.model is None else self.model.permuted(perm)
@@ -1071,7 +1134,7 @@ class EngineState:
                           **{name: getattr(self, name)[perm] for name in
                              ("rough_w", "rough_angle", "rough_t", "rough_inv_inertia")
                              if getattr(self, name) is not None},
-                          image=self.image[perm], head=head, model=model,
+                          image=self.image[perm], head=head, model=model, wide=wide,
                           since_reorder=0)
 
     def predict_all(self) -> None:

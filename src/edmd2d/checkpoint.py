@@ -48,6 +48,7 @@ import numpy as np
 from . import models as _models
 from . import physics as _physics
 from ._atomic import replacing
+from ._engine.layout import Wide
 from ._operations import Operation, Trigger
 from ._state import EngineState
 from ._version import __version__
@@ -220,6 +221,9 @@ def _encode(name, value, arrays):
             else:
                 fields[key] = _encode(f"{name}.{key}", item, arrays)
         return {"model": fields}
+    if isinstance(value, Wide):  # (the grid's wide disks: arrays and a float)
+        return {"wide": {key: _encode(f"{name}.{key}", item, arrays)
+                         for key, item in value._asdict().items()}}
     if isinstance(value, dict) and all(isinstance(f, _physics.Family) for f in value.values()):
         return {"families": {key: {k: _encode(f"{name}.{key}.{k}", v, arrays)
                                    for k, v in family.state().items()}
@@ -270,6 +274,8 @@ def _decode(value, arrays):
                 fields[key] = _decode(entry, arrays)
         model.__setstate__(fields)
         return model
+    if kind == "wide":
+        return Wide(**{key: _decode(entry, arrays) for key, entry in item.items()})
     if kind == "families":
         out = {}
         for key, fields in item.items():

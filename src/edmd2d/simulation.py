@@ -43,7 +43,8 @@ class Counts:
     wall_collisions : int
         Collisions of disks with box walls and wall segments (sides and end points).
     cell_crossings : int
-        Grid bookkeeping events: a disk centre moved into another cell.
+        Grid bookkeeping events: a disk centre moved into another cell (or, on a grid
+        with wide disks, a wide disk's footprint gained or lost a row of cells).
     events : int
         All processed events: the sum of the three above and of ``redraws``.
     stale : int
@@ -102,6 +103,16 @@ class Simulation(SimulationBase):
         Side of the grid cells (advanced).  Must be at least the largest diameter;
         the default is that bound, widened in dilute systems to keep at most about
         two cells per disk.
+    grid : {"auto", "uniform", "wide"}, default "auto"
+        How the grid finds neighbours (advanced; see ``docs/performance-notes.md``).
+        ``"uniform"``: every cell holds the largest disk.  ``"wide"``: the cells hold
+        the narrow disks, and each disk wider than them is listed in every cell near
+        it, so that a few large disks do not slow the many small ones.  ``"auto"``
+        keeps the uniform grid unless the largest diameter is at least 2.5 times the
+        smallest and an estimate of the work finds the wide grid cheaper.  Wide disks
+        do not combine with growth, shear, disks at rest or a ``cell_size`` (there
+        ``"auto"`` keeps the uniform grid).  Every grid gives the same dynamics; runs
+        on different grids differ by rounding.
     species : array_like of int, shape (N,), optional
         Each disk's species (``0, 1, ...``), which selects its row of the
         ``restitution`` table; all 0 by default.
@@ -202,6 +213,7 @@ class Simulation(SimulationBase):
         open_walls: Iterable[int] = (),
         time: float = 0.0,
         cell_size: float | None = None,
+        grid: str = "auto",
         species: ArrayLike | None = None,
         restitution: ArrayLike = 1.0,
         wall_restitution: float = 1.0,
@@ -270,11 +282,12 @@ class Simulation(SimulationBase):
             growth_family.check_combination(model, g)
         families = _physics.check_registered(
             dataclasses.replace(system, gravity=g, inelastic=not contact.elastic), physics)
+        _checks.check_grid(grid, rad, cell_size, growth_family, families)
         self._state = _state.EngineState(
             box, wall_list, pos, vel, rad, mass, float(t0),
             species=None if species is None else spec, model=model, gravity=g,
             growth=growth_family, cell_size=cell_size, families=families,
-            wall_open=wall_open)
+            wall_open=wall_open, grid=grid)
 
     def __len__(self) -> int:
         """The number of disks."""

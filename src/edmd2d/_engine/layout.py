@@ -551,6 +551,39 @@ class Rough(NamedTuple):
     inv_inertia: np.ndarray
 
 
+class Wide(NamedTuple):
+    """Disks wider than the grid's cells, listed in the cells of their footprints
+    (see :mod:`.wide`; ``None`` where the grid's cells hold the largest disk)."""
+
+    #: int64, shape (N,): each disk's index among the wide disks (-1: narrow).
+    index: np.ndarray
+    #: int64, shape (K,): the disk of each wide index.
+    disk: np.ndarray
+    #: int64, shape (K, 4): the footprint's cells ``(u0, u1, v0, v1)`` (unwrapped on
+    #: periodic axes).
+    rect: np.ndarray
+    #: int64, shape (K,): the first node of each wide disk.
+    base: np.ndarray
+    #: int64, shape (K, 2): the nodes per axis of each wide disk (``kw, kh``).
+    span: np.ndarray
+    #: The footprint's margin ``h`` beyond the radius: at least the largest narrow
+    #: radius.
+    half: float
+    #: int32: the first node of each cell's list of wide disks (-1: none).
+    bhead: np.ndarray
+    #: int32, shape (M,): the next and previous node in a cell's list.
+    nnext: np.ndarray
+    nprev: np.ndarray
+    #: int32, shape (M,): the wide index each node belongs to.
+    nk: np.ndarray
+    #: int32, shape (M,): the image shift ``k`` of each listed node (the disk's image
+    #: over that cell is at ``x - k L``).
+    nsx: np.ndarray
+    nsy: np.ndarray
+    #: int32, shape (M,): the cell each node is listed in (-1: not listed).
+    ncell: np.ndarray
+
+
 class ModelFamilies(NamedTuple):
     """The families a ``models.Model`` hands the engine, each ``None`` when unused."""
 

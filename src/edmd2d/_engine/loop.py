@@ -59,6 +59,11 @@ argument per physics family, each ``None`` when unused:
 ``rough``
     disks that spin (``layout.Rough``, :mod:`.rough`): after each collision with a disk
     or a wall, the tangential impulse of the contact points.
+``wide``
+    disks wider than the grid's cells (``layout.Wide``, :mod:`.wide`), listed in
+    every cell of their footprint: a wide disk's crossing changes its footprint by a
+    column or a row (or wraps its centre), and a narrow disk also meets the wide disks
+    listed in its own cell.
 
 numba prunes the branches of an argument that is ``None``, so each combination of
 families compiles its own ``run``, only when used, and the elastic default compiles to
@@ -75,6 +80,7 @@ from .._jit import kernel, njit
 from . import helfand as _helfand
 from . import lookahead, prefetch, queue, response, resting, sheared
 from . import rough as _rough
+from . import wide as _wide
 from .flight import drift, velocity_at
 from .grid import insert, remove
 from .layout import (
@@ -179,7 +185,7 @@ def _make_room(m, k, log_t, log_e, log_j):
 @kernel
 def run(control, particles, grid, walls, calendar, tallies, log,
         contact, heated, thermostat, uniforms, gravity, growth, rest, shear, helfand,
-        rough):
+        rough, wide):
     """Process events in time order (``control.mode`` RUN_EVENTS), or (``mode``
     PREDICT_ALL) predict every disk's next event from the time ``out[0]`` and rebuild
     the queue.  (``t_end``, ``max_collisions``, ``max_events``, ``mode``, ``out`` and
@@ -530,34 +536,40 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 if helfand is not None:
                     _helfand.flight(i, t, S, invm, helfand)
                 drift(i, t, S, gravity)
-                c = E[i, CELL]
-                cy = c // ncx
-                cx = c - cy * ncx
-                axis = aux >> 1  # directions 0, 1: +x, -x; 2, 3: +y, -y
-                if axis == 0:
-                    cx, wrap = _step_cell(cx, aux == 0, ncx)
-                else:
-                    cy, wrap = _step_cell(cy, aux == 2, ncy)
-                wrapped = wrap != 0
-                if wrapped:
-                    S[i, X + axis] -= wrap * gf[axis]
-                    image[i, axis] += wrap
-                    if shear is not None and axis == 1:
-                        cx = sheared.wrap(i, t, wrap > 0, S, image, gi, gf, shear)
-                remove(i, c, head, nxt, prv)
-                c = cx + ncx * cy
-                insert(i, c, head, nxt, prv)
-                E[i, CELL] = c
-                if wrapped:
-                    # Other disks' predictions hold i's image shift: invalidate them, and
-                    # the kept candidate of i is in the old frame: predict afresh.
-                    stamp[i] += 1
+                if wide is not None and wide.index[i] >= 0:
+                    # (A wide disk's footprint changes, or its centre wraps.)
+                    direction = _wide.cross(i, t, aux, S, E, stamp, image, gi, gf, wide)
                     redo0 = i
                 else:
-                    redo0 = i
-                    direction = aux
-                    if shear is not None and (cy == 0 or cy == ncy - 1):
-                        direction = -1  # (an edge row: its neighbours slide)
+                    c = E[i, CELL]
+                    cy = c // ncx
+                    cx = c - cy * ncx
+                    axis = aux >> 1  # directions 0, 1: +x, -x; 2, 3: +y, -y
+                    if axis == 0:
+                        cx, wrap = _step_cell(cx, aux == 0, ncx)
+                    else:
+                        cy, wrap = _step_cell(cy, aux == 2, ncy)
+                    wrapped = wrap != 0
+                    if wrapped:
+                        S[i, X + axis] -= wrap * gf[axis]
+                        image[i, axis] += wrap
+                        if shear is not None and axis == 1:
+                            cx = sheared.wrap(i, t, wrap > 0, S, image, gi, gf, shear)
+                    remove(i, c, head, nxt, prv)
+                    c = cx + ncx * cy
+                    insert(i, c, head, nxt, prv)
+                    E[i, CELL] = c
+                    if wrapped:
+                        # Other disks' predictions hold i's image shift: invalidate
+                        # them, and the kept candidate of i is in the old frame: predict
+                        # afresh.
+                        stamp[i] += 1
+                        redo0 = i
+                    else:
+                        redo0 = i
+                        direction = aux
+                        if shear is not None and (cy == 0 or cy == ncy - 1):
+                            direction = -1  # (an edge row: its neighbours slide)
                 counts[C_CROSSINGS] += 1
 
             if not (shear is not None and sliding):
@@ -578,7 +590,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 d = redo0 if k == 0 else redo1
                 dk = direction if k == 0 else -1
             t_new = predict(d, t, dk, S, E, tcand, stamp, gi, gf, head, nxt,
-                            wa, wb, wstart, wwall, wsx, wsy, gravity, growth, shear)
+                            wa, wb, wstart, wwall, wsx, wsy, gravity, growth, shear, wide)
             E[d, STAGED] = 0  # (a new event: no stage of the lookahead yet)
             if mode == PREDICT_ALL:
                 qt[d] = t_new

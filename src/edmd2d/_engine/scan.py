@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from .._jit import njit
 from . import prefetch, sheared
+from . import wide as _wide
 from .flight import acceleration, position_at, velocity_at
 from .grid import neighbour
 from .layout import (
@@ -180,7 +181,7 @@ def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tcand, E, gi, gf, gravity):
 
 @njit(inline="always")
 def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
-            wa, wb, wstart, wwall, wsx, wsy, gravity, growth, shear):
+            wa, wb, wstart, wwall, wsx, wsy, gravity, growth, shear, wide):
     """Predict disk ``i``'s next event from time ``t``, keep its best non-crossing
     candidate, and return the time of the scheduled event.
 
@@ -192,9 +193,16 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
 
     ``growth``: ``None``, or radii that grow (``layout.Growth``, :func:`growth_factor`).
     ``shear``: ``None``, or Lees-Edwards boundaries (``layout.Shear``, :mod:`.sheared`).
+    ``wide``: ``None``, or disks wider than the cells (``layout.Wide``,
+    :mod:`.wide`): a wide disk is predicted by :func:`.wide.predict` (``direction``
+    then the code of its crossing), and a narrow one also scans its own cell's list of
+    wide disks.
 
     (One function for both, compiled into the event loop at a single place.)
     """
+    if wide is not None and wide.index[i] >= 0:
+        return _wide.predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt, wa,
+                             wb, wstart, wwall, wsx, wsy, gravity, wide)
     if gravity is not None and gravity.support[i] & RESTING:
         # At rest: no event of its own (flying disks hold their contacts with it).
         tcand[i] = INF
@@ -276,6 +284,15 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
         partner = pd
         aux = ad
         pst = ps
+    if wide is not None:
+        bd, pd, ad, ps = _wide.scan_cell(i, t, x, y, vx, vy, S[i, R], c, S, stamp, gf, wide,
+                                         best, -1, 0, 0, gravity)
+        if bd < best:
+            best = bd
+            kind = DISK
+            partner = pd
+            aux = ad
+            pst = ps
     bw, pw, aw = _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall,
                              wsx, wsy, best, -1, 0, gravity, growth)
     if bw < best:

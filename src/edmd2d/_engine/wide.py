@@ -1,0 +1,570 @@
+"""Wide disks: disks far larger than the grid's cells, listed in every cell near them.
+
+The uniform grid's cell must be as wide as the largest diameter, so that a few large
+disks make every small disk's prediction scan many neighbours.  Where the radii differ
+enough, the grid's cells are sized for the *narrow* disks instead (at least their
+largest diameter), and each disk wider than that is a *wide* disk
+(``layout.Wide``): it is in no cell's list of disks; instead it is listed, through one
+*node* per cell, in every cell of its **footprint**, the cells that meet the interval
+``[x - r - h, x + r + h]`` along each axis, with ``h`` half a cell side (at least the
+largest narrow radius, with the grid's rounding margin).
+
+Why that finds every contact: a narrow disk ``i`` touching a wide disk ``j`` has its
+centre within ``r_i + r_j <= h + r_j`` of ``j``'s along each axis, so ``i``'s cell is
+in ``j``'s footprint, and ``i`` meets ``j`` in its own cell's list of wide disks; two
+wide disks that touch have footprints that overlap, so each meets the other in the
+wide lists of its footprint's cells.  A pair is *linked* while that holds; a link
+forms only at an event of one of the two disks, which then predicts against the
+other:
+
+- a narrow disk crossing into a cell scans that cell's wide list (every prediction of
+  a narrow disk scans its own cell's wide list, besides its 3x3 cells of disks);
+- a wide disk's footprint grows by a column or a row when the edge ``x + r + h`` (or
+  ``x - r - h``, ``y +- (r + h)``) crosses a cell boundary: that crossing is an event
+  of the wide disk (a cell crossing, ``CROSS``), which lists it in the new cells and
+  scans their disks and wide lists.  An edge that leaves a cell shrinks the footprint
+  (no scan: what left the footprint cannot be met through it).
+
+So the grid stays exact as for narrow disks, and a wide disk's prediction scans the
+cells of its footprint: about ``(2 r / s + 2)^2`` list heads and the narrow disks
+around its rim, where the uniform grid would scan nine cells of a diameter each for
+every disk.
+
+Periodic axes: a footprint is kept in unwrapped cell coordinates; a node on the cell
+``u`` (wrapped to ``u mod n``) records the image shift ``k = floor(u / n)``: the disk's
+image over that cell lies at ``x - k L``.  A wide disk's centre wraps when it leaves
+the box, which is an event of its own (its footprint and every node's shift move by a
+period, and every prediction against it is invalidated).  Walled axes clamp the
+footprint to the grid; an edge beyond the last cell schedules nothing.
+
+A wide disk's scheduled crossing is coded in the high bits of ``E[i, KIND]`` as
+``4 * what + direction`` (direction 0-3: +x, -x, +y, -y; ``what``: 0 the low edge,
+1 the high edge, 2 the centre's wrap).  Node ``m`` of wide disk ``k`` for the unwrapped
+cell ``(u, v)`` is ``base[k] + (u mod kw) + kw (v mod kh)``: a footprint never spans
+more than ``kw x kh`` cells, so the nodes of its cells are distinct.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._jit import kernel, njit
+from .flight import acceleration, position_at, velocity_at
+from .grid import insert, remove
+from .layout import (
+    AUX,
+    BOX,
+    CELL,
+    DISK,
+    KIND,
+    NONE,
+    PARTNER,
+    PSTAMP,
+    SEGMENT,
+    VX,
+    VY,
+    R,
+    Wide,
+    X,
+    Y,
+    kind_of,
+    pack_kind,
+    pack_segment,
+    pack_shift,
+)
+from .predict import (
+    INF,
+    box_wall_time,
+    box_wall_time_accel,
+    exit_time,
+    exit_time_accel,
+    pair_time,
+    point_time,
+    segment_time,
+    segment_time_accel,
+)
+
+LOW = 0  # the footprint's low edge crossed a cell boundary
+HIGH = 1  # its high edge
+WRAP = 2  # the centre left the box (periodic axis)
+
+
+@njit(inline="always")
+def footprint(x, reach, side, ncell, periodic):
+    """The first and last cell (unwrapped) that ``[x - reach, x + reach]`` meets;
+    clamped to the grid on a walled axis."""
+    lo = int(math.floor((x - reach) / side))
+    hi = int(math.floor((x + reach) / side))
+    if not periodic:
+        lo = max(lo, 0)
+        hi = min(hi, ncell - 1)
+    return lo, hi
+
+
+@njit(inline="always")
+def _slot(k, u, v, wide):
+    kw = wide.span[k, 0]
+    kh = wide.span[k, 1]
+    return wide.base[k] + (u % kw) + kw * (v % kh)
+
+
+@njit
+def _put(k, u, v, gi, wide):
+    """List wide disk ``k`` in the unwrapped cell ``(u, v)``."""
+    kx = 0
+    ky = 0
+    if gi[2] != 0:
+        kx = u // gi[0]
+    if gi[3] != 0:
+        ky = v // gi[1]
+    c = (u - kx * gi[0]) + gi[0] * (v - ky * gi[1])
+    m = _slot(k, u, v, wide)
+    wide.nsx[m] = kx
+    wide.nsy[m] = ky
+    wide.ncell[m] = c
+    insert(m, c, wide.bhead, wide.nnext, wide.nprev)
+
+
+@njit
+def _take(k, u, v, wide):
+    """Take wide disk ``k`` out of the unwrapped cell ``(u, v)``."""
+    m = _slot(k, u, v, wide)
+    remove(m, wide.ncell[m], wide.bhead, wide.nnext, wide.nprev)
+    wide.ncell[m] = -1
+
+
+@njit
+def _centre_cell(k, gi, wide):
+    """A cell near the middle of wide disk ``k``'s footprint (``E[i, CELL]``: a hint
+    for the lookahead and the order of the rows, never a list it is in)."""
+    u = (wide.rect[k, 0] + wide.rect[k, 1]) // 2
+    v = (wide.rect[k, 2] + wide.rect[k, 3]) // 2
+    return (u % gi[0]) + gi[0] * (v % gi[1])
+
+
+@kernel
+def fill(S, E, gi, gf, wide, head, nxt, prv):
+    """List every wide disk in the cells of its footprint (from its stored position)
+    and take it out of the list of disks of its cell, where ``grid.build_cells`` put
+    it.  Every prediction must be made afresh afterwards."""
+    wide.bhead[:] = -1
+    wide.ncell[:] = -1
+    for k in range(wide.disk.shape[0]):
+        i = wide.disk[k]
+        remove(i, np.int64(E[i, CELL]), head, nxt, prv)
+        reach = S[i, R] + wide.half
+        x0, x1 = footprint(S[i, X], reach, gf[2], gi[0], gi[2] != 0)
+        y0, y1 = footprint(S[i, Y], reach, gf[3], gi[1], gi[3] != 0)
+        wide.rect[k, 0] = x0
+        wide.rect[k, 1] = x1
+        wide.rect[k, 2] = y0
+        wide.rect[k, 3] = y1
+        for v in range(y0, y1 + 1):
+            for u in range(x0, x1 + 1):
+                _put(k, u, v, gi, wide)
+        E[i, CELL] = _centre_cell(k, gi, wide)
+
+
+@kernel
+def detach(E, wide, head, nxt, prv):
+    """Take every wide disk out of the list of disks of its (hint) cell, after the
+    lists were rebuilt from ``E[:, CELL]``."""
+    for k in range(wide.disk.shape[0]):
+        i = wide.disk[k]
+        remove(i, np.int64(E[i, CELL]), head, nxt, prv)
+
+
+@njit
+def scan_cell(i, t, x, y, vx, vy, r, c, S, stamp, gf, wide, best, partner, aux, pst,
+              gravity):
+    """Earliest contact of the narrow disk ``i`` (at ``x, y`` with velocity ``vx, vy``
+    at time ``t``) with the wide disks listed in its cell ``c``, if before ``best``."""
+    gxi, gyi = acceleration(i, gravity)
+    m = wide.bhead[c]
+    while m >= 0:
+        j = wide.disk[wide.nk[m]]
+        sx = wide.nsx[m]
+        sy = wide.nsy[m]
+        dtc = _pair(i, j, t, x, y, vx, vy, gxi, gyi, r, -sx, -sy, S, gf, gravity, best)
+        if dtc < best:
+            best = dtc
+            partner = j
+            aux = pack_shift(-sx, -sy)
+            pst = stamp[j]
+        m = wide.nnext[m]
+    return best, partner, aux, pst
+
+
+@njit
+def _pair(i, j, t, x, y, vx, vy, gxi, gyi, r, sx, sy, S, gf, gravity, best):
+    """Contact time of ``i`` with the image ``(sx, sy)`` of ``j`` (as the narrow scan
+    computes it, with gravity's parabola against an immovable disk)."""
+    xj, yj = position_at(j, t, S, gravity)
+    dx = x - (xj + sx * gf[0])
+    dy = y - (yj + sy * gf[1])
+    if gravity is None:
+        return pair_time(dx, dy, vx - S[j, VX], vy - S[j, VY], r + S[j, R])
+    vxj, vyj = velocity_at(j, t, S, gravity)
+    gxj, gyj = acceleration(j, gravity)
+    if gxi == gxj and gyi == gyj:
+        return pair_time(dx, dy, vx - vxj, vy - vyj, r + S[j, R])
+    return point_time(dx, dy, vx - vxj, vy - vyj, gxi - gxj, gyi - gyj, r + S[j, R], best)
+
+
+@njit
+def _scan_block(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, gi, gf,
+                head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner,
+                aux, pst, gravity):
+    """Earliest contact of wide disk ``i`` (index ``k``) with the narrow disks, the
+    wide disks and the wall segments listed in the unwrapped cells ``[u0, u1] x [v0,
+    v1]`` of its footprint."""
+    ncx = gi[0]
+    for v in range(v0, v1 + 1):
+        ky = 0
+        if gi[3] != 0:
+            ky = v // gi[1]
+        cy = v - ky * gi[1]
+        for u in range(u0, u1 + 1):
+            kx = 0
+            if gi[2] != 0:
+                kx = u // ncx
+            c = (u - kx * ncx) + ncx * cy
+            # The narrow disks of the cell, seen from i's image over it (x - k L).
+            j = head[c]
+            while j >= 0:
+                dtc = _pair(i, j, t, x, y, vx, vy, gx, gy, r, kx, ky, S, gf, gravity, best)
+                if dtc < best:
+                    best = dtc
+                    kind = DISK
+                    partner = j
+                    aux = pack_shift(kx, ky)
+                    pst = stamp[j]
+                j = nxt[j]
+            # The other wide disks listed there: j's image is at x_j - k' L.
+            m = wide.bhead[c]
+            while m >= 0:
+                kk = wide.nk[m]
+                if kk != k:
+                    j = wide.disk[kk]
+                    sx = kx - wide.nsx[m]
+                    sy = ky - wide.nsy[m]
+                    if -1 <= sx <= 1 and -1 <= sy <= 1:
+                        dtc = _pair(i, j, t, x, y, vx, vy, gx, gy, r, sx, sy, S, gf,
+                                    gravity, best)
+                        if dtc < best:
+                            best = dtc
+                            kind = DISK
+                            partner = j
+                            aux = pack_shift(sx, sy)
+                            pst = stamp[j]
+                m = wide.nnext[m]
+            if wa.shape[0] > 0:
+                for q in range(wstart[c], wstart[c + 1]):
+                    w = wwall[q]
+                    shx = wsx[q] * gf[0]
+                    shy = wsy[q] * gf[1]
+                    if gravity is None or (gx == 0.0 and gy == 0.0):
+                        dtw, part = segment_time(x, y, vx, vy, r, wa[w, 0] + shx,
+                                                 wa[w, 1] + shy, wb[w, 0] + shx,
+                                                 wb[w, 1] + shy)
+                    else:
+                        dtw, part = segment_time_accel(x, y, vx, vy, gx, gy, r,
+                                                       wa[w, 0] + shx, wa[w, 1] + shy,
+                                                       wb[w, 0] + shx, wb[w, 1] + shy,
+                                                       best)
+                    if dtw < best:
+                        best = dtw
+                        kind = SEGMENT
+                        partner = w
+                        aux = pack_segment(part, pack_shift(wsx[q], wsy[q]))
+                        pst = 0
+    return best, kind, partner, aux, pst
+
+
+@njit
+def _edge_time(e, v, a, c, side, ncell, periodic, gravity):
+    if gravity is None:
+        return exit_time(e, v, c, side, ncell, periodic)
+    return exit_time_accel(e, v, a, c, side, ncell, periodic)
+
+
+@njit
+def predict(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall,
+            wsx, wsy, gravity, wide):
+    """:func:`.scan.predict` for a wide disk: its next event from time ``t``.
+
+    ``code`` -1: a full prediction (box walls and every cell of its footprint).
+    Otherwise the crossing ``code`` (``4 * what + direction``) has just grown its
+    footprint by the column or row it names, or shrunk it: if its kept candidate is
+    still valid only the new cells are scanned against it (none for a shrink)."""
+    k = wide.index[i]
+    if gravity is None:
+        vx = S[i, VX]
+        vy = S[i, VY]
+        gx = 0.0
+        gy = 0.0
+    else:
+        vx, vy = velocity_at(i, t, S, gravity)
+        gx, gy = acceleration(i, gravity)
+    x, y = position_at(i, t, S, gravity)
+    r = S[i, R]
+    x0 = wide.rect[k, 0]
+    x1 = wide.rect[k, 1]
+    y0 = wide.rect[k, 2]
+    y1 = wide.rect[k, 3]
+    partial = code >= 0 and code < 8 and not (
+        kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
+    kind = NONE
+    partner = -1
+    aux = 0
+    pst = 0
+    if partial:
+        best = tcand[i] - t
+        what = code >> 2
+        direction = code & 3
+        # (Grown: low edge moving down, or high edge moving up.)
+        grown = (what == LOW and (direction & 1) == 1) or (what == HIGH and
+                                                         (direction & 1) == 0)
+        if grown:
+            if direction < 2:
+                u = x0 if what == LOW else x1
+                best, kind, partner, aux, pst = _scan_block(
+                    i, k, t, x, y, vx, vy, gx, gy, r, u, u, y0, y1, S, stamp, gi, gf,
+                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
+                    partner, aux, pst, gravity)
+            else:
+                v = y0 if what == LOW else y1
+                best, kind, partner, aux, pst = _scan_block(
+                    i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, v, v, S, stamp, gi, gf,
+                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
+                    partner, aux, pst, gravity)
+    else:
+        best = INF
+        if gi[2] == 0:
+            if gravity is None:
+                dtw, side = box_wall_time(x, vx, r, gf[0])
+            else:
+                dtw, side = box_wall_time_accel(x, vx, gx, r, gf[0])
+            if dtw < best:
+                best = dtw
+                kind = BOX
+                aux = side
+        if gi[3] == 0:
+            if gravity is None:
+                dtw, side = box_wall_time(y, vy, r, gf[1])
+            else:
+                dtw, side = box_wall_time_accel(y, vy, gy, r, gf[1])
+            if dtw < best:
+                best = dtw
+                kind = BOX
+                aux = 2 + side
+        best, kind, partner, aux, pst = _scan_block(
+            i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, y0, y1, S, stamp, gi, gf, head, nxt,
+            wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner, aux, pst, gravity)
+    if not partial or kind != NONE:
+        tcand[i] = t + best
+        E[i, KIND] = kind
+        E[i, PARTNER] = partner
+        E[i, AUX] = aux
+        E[i, PSTAMP] = pst
+    # The next change of the footprint (or wrap of the centre).
+    reach = r + wide.half
+    first = INF
+    sched = 0
+    for axis in range(2):
+        side = gf[2 + axis]
+        ncell = gi[axis]
+        periodic = gi[2 + axis] != 0
+        p = x if axis == 0 else y
+        vel = vx if axis == 0 else vy
+        a = gx if axis == 0 else gy
+        lo = wide.rect[k, 2 * axis]
+        hi = wide.rect[k, 2 * axis + 1]
+        for what in range(3):
+            if what == LOW:
+                dt, sign = _edge_time(p - reach, vel, a, lo, side, ncell, periodic, gravity)
+            elif what == HIGH:
+                dt, sign = _edge_time(p + reach, vel, a, hi, side, ncell, periodic, gravity)
+            elif periodic:
+                dt, sign = _edge_time(p, vel, a, 0, gf[axis], 1, True, gravity)
+            else:
+                dt, sign = INF, 0
+            if dt < first:
+                first = dt
+                sched = 4 * what + 2 * axis + (0 if sign > 0 else 1)
+    E[i, KIND] = pack_kind(kind_of(E[i, KIND]), sched)
+    return min(tcand[i], t + first)
+
+
+@njit
+def cross(i, t, code, S, E, stamp, image, gi, gf, wide):
+    """Carry out wide disk ``i``'s crossing ``code`` at ``t`` (the disk already moved
+    there): grow or shrink its footprint by a column or row, or wrap its centre into
+    the box.  Returns the code for a partial prediction, or -1 for a full one (a wrap,
+    after which every prediction against ``i`` is stale: its stamp is raised)."""
+    k = wide.index[i]
+    what = code >> 2
+    direction = code & 3
+    axis = direction >> 1
+    up = (direction & 1) == 0
+    x0 = wide.rect[k, 0]
+    x1 = wide.rect[k, 1]
+    y0 = wide.rect[k, 2]
+    y1 = wide.rect[k, 3]
+    if what == WRAP:
+        n = gi[axis]
+        shift = 1 if up else -1
+        if axis == 0:
+            S[i, X] -= shift * gf[0]
+        else:
+            S[i, Y] -= shift * gf[1]
+        image[i, axis] += shift
+        # The same cells, one period lower (or higher) in unwrapped coordinates: take
+        # the nodes out and put them back under the new numbering.
+        for v in range(y0, y1 + 1):
+            for u in range(x0, x1 + 1):
+                _take(k, u, v, wide)
+        wide.rect[k, 2 * axis] -= shift * n
+        wide.rect[k, 2 * axis + 1] -= shift * n
+        for v in range(wide.rect[k, 2], wide.rect[k, 3] + 1):
+            for u in range(wide.rect[k, 0], wide.rect[k, 1] + 1):
+                _put(k, u, v, gi, wide)
+        stamp[i] += 1
+        E[i, CELL] = _centre_cell(k, gi, wide)
+        return -1
+    col = 2 * axis + (0 if what == LOW else 1)
+    old = wide.rect[k, col]
+    new = old + (1 if up else -1)
+    grown = (what == HIGH) == up
+    if axis == 0:
+        if grown:
+            for v in range(y0, y1 + 1):
+                _put(k, new, v, gi, wide)
+        else:
+            for v in range(y0, y1 + 1):
+                _take(k, old, v, wide)
+    else:
+        if grown:
+            for u in range(x0, x1 + 1):
+                _put(k, u, new, gi, wide)
+        else:
+            for u in range(x0, x1 + 1):
+                _take(k, u, old, wide)
+    wide.rect[k, col] = new
+    E[i, CELL] = _centre_cell(k, gi, wide)
+    return code
+
+
+@kernel
+def first_overlap(pos, rad, gi, gf, head, nxt, wide, tol):
+    """The first pair ``(i, j, distance)`` of a wide disk and a disk (narrow or wide)
+    listed in its footprint's cells that overlap by more than ``tol`` of their contact
+    distance; ``(-1, -1, 0.0)`` for none.  (Narrow pairs are checked on the cells.)"""
+    ncx = gi[0]
+    for k in range(wide.disk.shape[0]):
+        i = wide.disk[k]
+        for v in range(wide.rect[k, 2], wide.rect[k, 3] + 1):
+            ky = v // gi[1] if gi[3] != 0 else 0
+            for u in range(wide.rect[k, 0], wide.rect[k, 1] + 1):
+                kx = u // ncx if gi[2] != 0 else 0
+                c = (u - kx * ncx) + ncx * (v - ky * gi[1])
+                j = head[c]
+                while j >= 0:
+                    dx = pos[i, 0] - (pos[j, 0] + kx * gf[0])
+                    dy = pos[i, 1] - (pos[j, 1] + ky * gf[1])
+                    d = math.sqrt(dx * dx + dy * dy)
+                    if d < (rad[i] + rad[j]) * (1.0 - tol):
+                        return i, j, d
+                    j = nxt[j]
+                m = wide.bhead[c]
+                while m >= 0:
+                    kk = wide.nk[m]
+                    if kk != k:
+                        j = wide.disk[kk]
+                        dx = pos[i, 0] - (pos[j, 0] + (kx - wide.nsx[m]) * gf[0])
+                        dy = pos[i, 1] - (pos[j, 1] + (ky - wide.nsy[m]) * gf[1])
+                        d = math.sqrt(dx * dx + dy * dy)
+                        if d < (rad[i] + rad[j]) * (1.0 - tol):
+                            return i, j, d
+                    m = wide.nnext[m]
+    return -1, -1, 0.0
+
+
+# ------------------------------------------------------------------ choice and set-up
+# Below this ratio of the largest to the smallest diameter the uniform grid is kept
+# without asking the cost model (equal disks and the usual binary mixtures stay bit for
+# bit what they were); above it the cost model decides.
+MIN_RATIO = 2.5
+
+
+def _cost(d, weight, density, area, s, half):
+    """Estimated work per unit time of predictions on a grid of cells of side ``s``
+    for disks of diameters ``d`` (those wider than ``2 half`` wide), each predicting
+    at the rate ``weight``: list heads and pair tests."""
+    narrow = d <= 2.0 * half
+    reach = 0.5 * d[~narrow] + half
+    cells = (2.0 * reach / s + 1.0) ** 2
+    inner = np.maximum(0.5 * d[~narrow] - s, 0.0)
+    pairs = density * ((2.0 * reach + s) ** 2 - math.pi * inner ** 2)
+    nodes_per_cell = float(cells.sum()) * s * s / area
+    narrow_cost = 9.0 + 9.0 * density * s * s + 1.0 + nodes_per_cell
+    return float(weight[narrow].sum() * narrow_cost
+                 + (weight[~narrow] * (cells + pairs)).sum())
+
+
+def choose(rad, width, height, periodic, margin, force=False):
+    """The narrow diameter of the grid (cells sized for disks up to it, wider disks
+    wide), or ``None`` for the uniform grid: from an estimate of the work of
+    predictions (:func:`_cost`) over candidate splits, the uniform grid unless a split
+    is estimated at least 20 % cheaper (``force``: the cheapest split whatever).  On a
+    periodic axis a wide disk's footprint and two cells must fit in the period (so
+    that a footprint holds one image of each cell, and the images of two footprints
+    over one cell are at most a period apart).  ``None`` also where no split fits."""
+    d = 2.0 * np.asarray(rad, float)
+    dmax = float(d.max())
+    if not force and dmax < MIN_RATIO * float(d.min()):
+        return None
+    area = width * height
+    density = len(d) / area
+    weight = 0.5 * d + 0.5 * float(d.mean())  # (collision rates grow with r_i + r_j)
+    uniform = float(weight.sum()) * (9.0 + 9.0 * density * dmax * dmax)
+    best, split = math.inf, None
+    sizes = np.unique(d)
+    if len(sizes) > 64:
+        sizes = np.unique(np.quantile(d, np.linspace(0.0, 1.0, 65)))
+    limit = min([length for length, p in zip((width, height), periodic) if p],
+                default=math.inf)
+    for dn in sizes[sizes < dmax]:
+        s = max(float(dn) * (1.0 + margin), math.sqrt(area / (2.0 * len(d))))
+        half = 0.5 * float(dn) + margin * (s + float(dn))
+        if 2.0 * (0.5 * dmax + half) + 2.0 * s >= limit:
+            continue
+        cost = _cost(d, weight, density, area, s, half)
+        if cost < best:
+            best, split = cost, float(dn)
+    if split is None or (not force and best > 0.8 * uniform):
+        return None
+    return split
+
+
+def allocate(rad, narrow, gi, gf, half):
+    """A ``layout.Wide`` for the disks wider than ``narrow`` (their footprints to be
+    filled by :func:`fill`)."""
+    index = np.full(len(rad), -1, np.int64)
+    disk = np.flatnonzero(2.0 * np.asarray(rad) > narrow).astype(np.int64)
+    index[disk] = np.arange(len(disk))
+    reach = np.asarray(rad)[disk] + half
+    span = np.empty((len(disk), 2), np.int64)
+    span[:, 0] = np.floor(2.0 * reach / gf[2]).astype(np.int64) + 2
+    span[:, 1] = np.floor(2.0 * reach / gf[3]).astype(np.int64) + 2
+    size = span[:, 0] * span[:, 1]
+    base = np.zeros(len(disk), np.int64)
+    base[1:] = np.cumsum(size)[:-1]
+    nodes = int(size.sum())
+    nk = np.repeat(np.arange(len(disk)), size).astype(np.int32)
+    return Wide(index, disk, np.zeros((len(disk), 4), np.int64), base, span, float(half),
+                np.full(int(gi[0] * gi[1]), -1, np.int32), np.full(nodes, -1, np.int32),
+                np.full(nodes, -1, np.int32), nk, np.zeros(nodes, np.int32),
+                np.zeros(nodes, np.int32), np.full(nodes, -1, np.int32))

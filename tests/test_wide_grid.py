@@ -1,0 +1,215 @@
+"""Wide disks (``Simulation(grid=...)``, ``_engine/wide.py``): disks far wider than
+the grid's cells, listed in every cell near them.  The engine on that grid against
+the brute-force reference event for event, with every physics family it runs; against
+the uniform grid over longer runs; the automatic choice; continuations; refusals."""
+
+from __future__ import annotations
+
+import copy
+import warnings
+
+import numpy as np
+import pytest
+
+import edmd2d as ed
+from conftest import seed_of
+from edmd2d.reference import ReferenceSimulation
+
+BOX_KINDS = [(True, True), (False, False), (True, False), (False, True)]
+
+
+def _canonical(events):
+    return [(t, k, min(i, j), max(i, j)) if k == "disk" else (t, k, i, j)
+            for t, k, i, j in events]
+
+
+def _mixture(seed, n=40, big=3, ratio=5.0, packing=0.35, periodic=True, walls=None,
+             aspect=1.0):
+    """A disordered gas of ``n`` disks, ``big`` of them ``ratio`` times wider (up to
+    20 % narrower at random), from ``random_gas``."""
+    rng = np.random.default_rng(seed)
+    rad = np.full(n, 0.5)
+    rad[:big] = 0.5 * ratio * rng.uniform(0.8, 1.0, big)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (disks that the segments cross left out)
+        return ed.random_gas(n, packing, radii=rad, periodic=periodic, walls=walls,
+                             aspect=aspect, seed=int(rng.integers(1 << 30)))
+
+
+def _walls(kind, box):
+    w, h = box.width, box.height
+    if kind == "divider":
+        return [ed.Wall((0.5 * w, 0.2 * h), (0.5 * w, 0.7 * h))]
+    if kind == "slant":
+        return [ed.Wall((0.1 * w, 0.8 * h), (0.6 * w, 0.95 * h))]
+    return []
+
+
+def _physics(seed, periodic):
+    kinds = [{}, dict(restitution=0.85, tc=1e-3), dict(tangential_restitution=0.5),
+             dict(thermostat=(1.0, 0.5), seed=seed)]
+    out = dict(kinds[seed % 4])
+    if not all(periodic) and seed % 3 == 0:
+        out["gravity"] = (0.3, -1.0)
+        if "restitution" in out:
+            out["resting"] = False
+    return out
+
+
+CASES = [(seed, BOX_KINDS[seed % 4], ("none", "divider", "slant")[seed % 3])
+         for seed in range(24)]
+
+
+@pytest.mark.parametrize("seed, periodic, walls_kind", CASES)
+def test_same_events_and_final_state_as_reference(seed, periodic, walls_kind):
+    rng = np.random.default_rng(seed_of(980) + seed)
+    shape = dict(n=int(rng.integers(30, 60)), big=int(rng.integers(1, 4)),
+                 ratio=float(rng.choice([3.0, 4.0, 6.0])), packing=0.3, periodic=periodic,
+                 aspect=float(rng.choice([1.0, 0.6])))
+    for attempt in range(20):  # (until the segment leaves a wide disk in the box)
+        probe = _mixture(seed_of(981) + 100 * attempt + seed, **shape)
+        walls = _walls(walls_kind, probe.box)
+        gas = _mixture(seed_of(981) + 100 * attempt + seed, walls=walls,
+                       **shape) if walls else probe
+        if gas.radii.max() > 0.5:
+            break
+    pos, vel, rad = gas.positions, gas.velocities.copy(), gas.radii
+    mass = np.ones(len(pos))
+    if seed % 5 == 0:  # (an immovable disk: the first, a wide one)
+        mass[0] = np.inf
+        vel[0] = 0.0
+    options = _physics(seed, periodic)
+    sim = ed.Simulation(pos, vel, rad, mass, box=gas.box, walls=walls, grid="wide",
+                        **options)
+    assert sim._state.wide is not None
+    sim._record_events(10_000)
+    ref_options = {k: v for k, v in options.items() if k != "resting"}
+    ref = ReferenceSimulation(pos, vel, rad, mass, box=gas.box, walls=walls, **ref_options)
+    # (Rounding differences grow chaotically: 20 collisions keep them far below the
+    # tolerances, and a missed contact shows as another sequence.)
+    sim.advance(until=30.0, collisions=20)
+    ref.advance(until=30.0, collisions=20)
+    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
+    assert [e[1:] for e in got] == [e[1:] for e in want]
+    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-8)
+    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-8)
+    assert any(e[1] == "disk" and (e[2] < 3 or e[3] < 3) for e in got) or seed % 5 == 0
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_the_same_run_as_the_uniform_grid(seed):
+    # Over hundreds of collisions (wide disks crossing cells, footprints growing and
+    # shrinking, wrapping round periodic boxes) the two grids give the same events,
+    # until rounding, which differs between them, has grown.
+    periodic = BOX_KINDS[seed % 4]
+    gas = _mixture(seed_of(982) + seed, n=150, big=4, ratio=(4.0, 10.0)[seed % 2],
+                   periodic=periodic)
+    runs = []
+    for grid in ("wide", "uniform"):
+        sim = ed.Simulation(gas.positions, gas.velocities, gas.radii, box=gas.box, grid=grid)
+        sim._record_events(1 << 16)
+        sim.advance(collisions=300)
+        runs.append(sim)
+    wide, uniform = runs
+    assert wide._state.wide is not None and uniform._state.wide is None
+    got, want = _canonical(wide._recorded_events()), _canonical(uniform._recorded_events())
+    assert [e[1:] for e in got] == [e[1:] for e in want]
+    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-7)
+    assert wide.counts.cell_crossings > 0
+
+
+def test_a_fast_wide_disk_round_a_small_periodic_box():
+    # One wide disk flying fast through a dilute gas, across both periodic edges many
+    # times: no contact missed (the reference agrees), no overlap after many wraps,
+    # the energy kept.
+    gas = _mixture(seed_of(983), n=30, big=1, ratio=4.0, packing=0.2)
+    vel = gas.velocities.copy()
+    vel[0] = [17.0, 9.0]
+    sim = ed.Simulation(gas.positions, vel, gas.radii, box=gas.box, grid="wide")
+    assert sim._state.wide is not None
+    sim._record_events(10_000)
+    ref = ReferenceSimulation(gas.positions, vel, gas.radii, box=gas.box)
+    sim.advance(collisions=25)
+    ref.advance(collisions=25)
+    assert [e[1:] for e in _canonical(sim._recorded_events())] == \
+        [e[1:] for e in _canonical(ref.events)]
+    start = sim.total_energy()
+    sim.advance(collisions=20_000)
+    wraps = np.round((sim.unwrapped_positions - sim.positions) / gas.box.size)
+    assert np.abs(wraps).sum() > 100  # (the disks went round the box many times)
+    p = sim.positions
+    d = p[:, None] - p[None]
+    d -= gas.box.size * np.round(d / gas.box.size)
+    gap = np.hypot(d[..., 0], d[..., 1]) - (sim.radii[:, None] + sim.radii[None])
+    np.fill_diagonal(gap, np.inf)
+    assert gap.min() > -1e-10
+    assert sim.total_energy() == pytest.approx(start, rel=1e-12)
+
+
+def test_the_automatic_choice():
+    few_big = _mixture(seed_of(984), n=2000, big=20, ratio=10.0)
+    assert few_big._state.wide is not None  # (random_gas takes the default, auto)
+    assert len(few_big._state.wide.disk) == 20
+    equal = ed.make_gas(400, 0.4, seed=1)
+    binary = ed.random_gas(400, 0.4, radii=np.where(np.arange(400) % 2, 0.5, 0.7), seed=1)
+    for sim in (equal, binary):
+        assert sim._state.wide is None
+    uniform = ed.Simulation(few_big.positions, few_big.velocities, few_big.radii,
+                            box=few_big.box, grid="uniform")
+    assert uniform._state.wide is None
+    assert few_big._state.gf[2] < 0.2 * uniform._state.gf[2]
+
+
+def test_checkpoints_copies_and_edits_keep_the_wide_grid(tmp_path):
+    sim = _mixture(seed_of(985), n=300, big=5, ratio=8.0, periodic=(True, False))
+    plain = copy.deepcopy(sim)
+    sim._state.reorder_every = 500  # (the rows re-sorted often along the way)
+    sim.advance(collisions=2000)
+    plain.advance(collisions=2000)
+    # (Re-sorting changes which disk of a pair fires first, hence rounding, as on the
+    # uniform grid: the same run to rounding.)
+    np.testing.assert_allclose(plain.positions, sim.positions, rtol=0, atol=1e-9)
+    ed.checkpoint.save(sim, tmp_path / "c.edmd2d")
+    again = ed.checkpoint.load(tmp_path / "c.edmd2d")
+    twin = copy.deepcopy(sim)
+    for s in (sim, again, twin):
+        s.advance(collisions=3000)
+    assert again._state.wide is not None
+    assert np.array_equal(again.positions, sim.positions)
+    assert np.array_equal(twin.velocities, sim.velocities)
+    # Moving every disk rebuilds the grid, wide disks listed afresh.
+    sim.set_positions(sim.positions)
+    sim.advance(collisions=1000)
+    assert sim._state.wide is not None
+
+
+def test_overlaps_with_wide_disks_are_refused():
+    box = ed.Box(20.0, 20.0)
+    rad = np.array([4.0] + [0.5] * 10)
+    pos = np.column_stack([np.linspace(1.0, 19.0, 11), np.full(11, 16.0)])
+    pos[0] = [10.0, 8.0]
+    ok = ed.Simulation(pos, np.zeros((11, 2)), rad, box=box, grid="wide")
+    assert ok._state.wide is not None
+    near = pos.copy()
+    near[1] = [10.0 + 2.9, 8.0 + 2.9]  # (4.10 from the centre: inside 4.5, cells away)
+    with pytest.raises(ValueError, match="disk 1 overlaps disk 0|disk 0 overlaps disk 1"):
+        ed.Simulation(near, np.zeros((11, 2)), rad, box=box, grid="wide")
+    wall = [ed.Wall((13.5, 2.0), (13.5, 14.0))]  # (3.5 from the wide disk's centre)
+    with pytest.raises(ValueError, match="overlaps walls"):
+        ed.Simulation(pos, np.zeros((11, 2)), rad, box=box, walls=wall, grid="wide")
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(grid="hierarchical"), "grid must be"),
+    (dict(grid="wide", cell_size=20.0), "cell_size"),
+    (dict(grid="wide", growth=0.01), "growth"),
+])
+def test_bad_grids_are_refused(kwargs, match):
+    gas = _mixture(1, n=40, big=2, ratio=4.0)
+    with pytest.raises(ValueError, match=match):
+        ed.Simulation(gas.positions, gas.velocities, gas.radii, box=gas.box, **kwargs)
+
+
+def test_equal_disks_have_no_wide_grid():
+    with pytest.raises(ValueError, match="more than one size"):
+        ed.make_gas(50, 0.3, seed=1, grid="wide")

@@ -499,26 +499,36 @@ def first_overlap(pos, rad, gi, gf, head, nxt, wide, tol):
 MIN_RATIO = 2.5
 
 
-def _cost(d, weight, density, area, s, half):
-    """Estimated work per unit time of predictions on a grid of cells of side ``s``
-    for disks of diameters ``d`` (those wider than ``2 half`` wide), each predicting
-    at the rate ``weight``: list heads and pair tests."""
-    narrow = d <= 2.0 * half
-    reach = 0.5 * d[~narrow] + half
-    cells = (2.0 * reach / s + 1.0) ** 2
-    inner = np.maximum(0.5 * d[~narrow] - s, 0.0)
-    pairs = density * ((2.0 * reach + s) ** 2 - math.pi * inner ** 2)
-    nodes_per_cell = float(cells.sum()) * s * s / area
-    narrow_cost = 9.0 + 9.0 * density * s * s + 1.0 + nodes_per_cell
-    return float(weight[narrow].sum() * narrow_cost
-                 + (weight[~narrow] * (cells + pairs)).sum())
+def _work(d, area, s, narrow_d, margin):
+    """Estimated work per unit time of the predictions on a grid of cells of side
+    ``s`` for disks of diameters ``d``, those wider than ``narrow_d`` wide (all narrow
+    for the uniform grid, ``narrow_d = inf``): list heads and pair tests, counted per
+    prediction and weighted by how often each disk predicts (after each of its
+    collisions, at a rate growing with ``r_i + r_mean``, and at its crossings, at a
+    rate ``1 / s``, with a partial scan).  A guide for the choice, not a measurement:
+    on the gases of ``benchmarks/sizes.py`` it ranks the grids as they measure."""
+    n = len(d)
+    narrow = d <= narrow_d
+    dens = float(narrow.sum()) / area  # narrow disks per unit area
+    reach = 0.5 * d[~narrow] + 0.5 * narrow_d + margin * (s + narrow_d)
+    side = 2.0 * reach / s + 1.0  # cells along a footprint's side
+    nodes = float((side * side).sum()) * s * s / area  # wide nodes per cell
+    per_cell = 1.0 + dens * s * s + nodes  # a list head, its disks, its wide nodes
+    collide = (0.5 * d + 0.5 * float(d.mean())) * (n / area) * 2.0  # (vs crossings)
+    cross = 1.6 / s
+    work = (collide[narrow] * (9.0 * per_cell)).sum() + narrow.sum() * cross * (
+        3.0 * per_cell)
+    if (~narrow).any():
+        work += (collide[~narrow] * side * side * per_cell).sum() + (
+            2.0 * cross * 0.5 * side * per_cell).sum()
+    return float(work)
 
 
 def choose(rad, width, height, periodic, margin, force=False):
     """The narrow diameter of the grid (cells sized for disks up to it, wider disks
     wide), or ``None`` for the uniform grid: from an estimate of the work of
-    predictions (:func:`_cost`) over candidate splits, the uniform grid unless a split
-    is estimated at least 20 % cheaper (``force``: the cheapest split whatever).  On a
+    predictions (:func:`_work`) over candidate splits, the uniform grid unless a split
+    is estimated at least 30 % cheaper (``force``: the cheapest split whatever).  On a
     periodic axis a wide disk's footprint and two cells must fit in the period (so
     that a footprint holds one image of each cell, and the images of two footprints
     over one cell are at most a period apart).  ``None`` also where no split fits."""
@@ -527,9 +537,8 @@ def choose(rad, width, height, periodic, margin, force=False):
     if not force and dmax < MIN_RATIO * float(d.min()):
         return None
     area = width * height
-    density = len(d) / area
-    weight = 0.5 * d + 0.5 * float(d.mean())  # (collision rates grow with r_i + r_j)
-    uniform = float(weight.sum()) * (9.0 + 9.0 * density * dmax * dmax)
+    dilute = math.sqrt(area / (2.0 * len(d)))  # (the grid's widening of dilute cells)
+    uniform = _work(d, area, max(dmax * (1.0 + margin), dilute), math.inf, margin)
     best, split = math.inf, None
     sizes = np.unique(d)
     if len(sizes) > 64:
@@ -537,14 +546,14 @@ def choose(rad, width, height, periodic, margin, force=False):
     limit = min([length for length, p in zip((width, height), periodic) if p],
                 default=math.inf)
     for dn in sizes[sizes < dmax]:
-        s = max(float(dn) * (1.0 + margin), math.sqrt(area / (2.0 * len(d))))
+        s = max(float(dn) * (1.0 + margin), dilute)
         half = 0.5 * float(dn) + margin * (s + float(dn))
         if 2.0 * (0.5 * dmax + half) + 2.0 * s >= limit:
             continue
-        cost = _cost(d, weight, density, area, s, half)
-        if cost < best:
-            best, split = cost, float(dn)
-    if split is None or (not force and best > 0.8 * uniform):
+        work = _work(d, area, s, float(dn), margin)
+        if work < best:
+            best, split = work, float(dn)
+    if split is None or (not force and best > 0.7 * uniform):
         return None
     return split
 

@@ -34,7 +34,10 @@ def engine_array_bytes(sim) -> int:
     the two row tables: each buffer is counted once.
     """
     owners = {}
-    for value in vars(sim._state).values():
+    values = list(vars(sim._state).values())
+    if sim._state.wide is not None:  # (the wide disks' lists: arrays in a named tuple)
+        values += list(sim._state.wide)
+    for value in values:
         if isinstance(value, np.ndarray):
             v = value
             while isinstance(v.base, np.ndarray):  # (a view: count its owner, once)

@@ -35,6 +35,7 @@ def load(name):
     ("granular_shear", {"N": 200, "RATES": (0.5, 1.0), "SETTLE": 10.0, "WINDOW": 20.0}),
     ("transport_coefficients", {"N": 64, "DURATION": 400.0,
                                 "WINDOWS": {0.1: 10.0, 0.3: 4.0}, "TAIL_WINDOW": 10.0}),
+    ("heavy_tracer", {"N": 2000, "DURATION": 20.0, "TIMED": 2}),
 ])
 def test_example_writes_its_figure(name, small, tmp_path, capsys):
     module = load(name)

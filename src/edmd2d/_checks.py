@@ -81,14 +81,14 @@ def as_cell_size(cell_size, rad: np.ndarray) -> float | None:
     return cell_size
 
 
-def check_grid(grid, rad: np.ndarray, cell_size, growth, families: dict) -> None:
+def check_grid(grid, rad: np.ndarray, cell_size, families: dict) -> None:
     """``grid`` is one of "auto", "uniform" and "wide", and "wide" has wide disks to
     list (radii of two sizes at least) and nothing that keeps them out."""
     if not isinstance(grid, str) or grid not in ("auto", "uniform", "wide"):
         raise ValueError(f"grid must be 'auto', 'uniform' or 'wide', got {grid!r}")
     if grid != "wide":
         return
-    others = [name for name, other in (("cell_size", cell_size), ("growth", growth),
+    others = [name for name, other in (("cell_size", cell_size),
                                        ("shear", families.get("shear")),
                                        ("resting", families.get("resting")))
               if other is not None]

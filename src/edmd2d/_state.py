@@ -333,7 +333,12 @@ class EngineState:
         (:meth:`time_of_diameter` of it)."""
         self.grid_dmax = float(dmax)
         width, height = self.box.width, self.box.height
-        narrow = self.narrow_diameter(cell_size)
+        # Under growth the grid holds the disks grown by ``scale`` (their largest to
+        # ``dmax``); so does a grid with wide disks, whose cells then hold the narrow
+        # disks grown as much, and whose footprints have room for the wide ones.
+        grown = self.growth_factor(self.time)
+        scale = dmax / (2.0 * float(self.S[:, _layout.R].max()) * grown)
+        narrow = self.narrow_diameter(cell_size, self.S[:, _layout.R] * (grown * scale))
         if narrow is not None:  # (the cells hold the narrow disks; wider ones are wide)
             dmax = narrow
         side_min = dmax * (1.0 + _CELL_MARGIN)
@@ -379,22 +384,22 @@ class EngineState:
             self.wstart, self.wwall, self.wsx, self.wsy = start, closed[wall], sx, sy
         self.wide = None
         if narrow is not None:
-            self.wide = _wide.allocate(self.S[:, _layout.R], narrow, self.gi, self.gf,
-                                       reach)
+            self.wide = _wide.allocate(self.S[:, _layout.R] * (grown * scale), narrow,
+                                       self.gi, self.gf, reach)
             _wide.fill(self.S, self.E, self.gi, self.gf, self.wide, self.head, self.nxt,
-                       self.prv)
+                       self.prv, grown)
 
-    def narrow_diameter(self, cell_size: float | None) -> float | None:
-        """The largest diameter the grid's cells are sized for, where disks wider than
-        it are listed in their footprints (:mod:`._engine.wide`); ``None`` for the
-        uniform grid (a ``cell_size`` given, growth, shear, disks at rest, or radii
-        too alike for it to pay)."""
-        if (self.grid_mode == "uniform" or cell_size is not None or self.growth is not None
-                or self.shear is not None or "resting" in self.families):
+    def narrow_diameter(self, cell_size: float | None, radii: np.ndarray) -> float | None:
+        """The largest of the diameters ``2 radii`` that the grid's cells are sized
+        for, where disks wider than it are listed in their footprints
+        (:mod:`._engine.wide`); ``None`` for the uniform grid (a ``cell_size`` given,
+        shear, disks at rest, or radii too alike for it to pay)."""
+        if (self.grid_mode == "uniform" or cell_size is not None or self.shear is not None
+                or "resting" in self.families):
             return None
         box = self.box
-        narrow = _wide.choose(self.S[:, _layout.R], box.width, box.height, box.periodic,
-                              _CELL_MARGIN, force=self.grid_mode == "wide")
+        narrow = _wide.choose(radii, box.width, box.height, box.periodic, _CELL_MARGIN,
+                              force=self.grid_mode == "wide")
         if narrow is None and self.grid_mode == "wide":
             with about("grid"):
                 raise ValueError("grid='wide' needs a periodic box longer than the "

@@ -110,8 +110,8 @@ class Simulation(SimulationBase):
         it, so that a few large disks do not slow the many small ones.  ``"auto"``
         keeps the uniform grid unless the largest diameter is at least 2.5 times the
         smallest and an estimate of the work finds the wide grid cheaper.  Wide disks
-        do not combine with growth, shear, disks at rest or a ``cell_size`` (there
-        ``"auto"`` keeps the uniform grid).  Every grid gives the same dynamics; runs
+        do not combine with shear, disks at rest or a ``cell_size`` (there ``"auto"``
+        keeps the uniform grid).  Every grid gives the same dynamics; runs
         on different grids differ by rounding.
     species : array_like of int, shape (N,), optional
         Each disk's species (``0, 1, ...``), which selects its row of the
@@ -282,7 +282,7 @@ class Simulation(SimulationBase):
             growth_family.check_combination(model, g)
         families = _physics.check_registered(
             dataclasses.replace(system, gravity=g, inelastic=not contact.elastic), physics)
-        _checks.check_grid(grid, rad, cell_size, growth_family, families)
+        _checks.check_grid(grid, rad, cell_size, families)
         self._state = _state.EngineState(
             box, wall_list, pos, vel, rad, mass, float(t0),
             species=None if species is None else spec, model=model, gravity=g,

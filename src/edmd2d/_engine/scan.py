@@ -202,7 +202,7 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
     """
     if wide is not None and wide.index[i] >= 0:
         return _wide.predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt, wa,
-                             wb, wstart, wwall, wsx, wsy, gravity, wide)
+                             wb, wstart, wwall, wsx, wsy, gravity, growth, wide)
     if gravity is not None and gravity.support[i] & RESTING:
         # At rest: no event of its own (flying disks hold their contacts with it).
         tcand[i] = INF
@@ -286,7 +286,7 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
         pst = ps
     if wide is not None:
         bd, pd, ad, ps = _wide.scan_cell(i, t, x, y, vx, vy, S[i, R], c, S, stamp, gf, wide,
-                                         best, -1, 0, 0, gravity)
+                                         best, -1, 0, 0, gravity, growth)
         if bd < best:
             best = bd
             kind = DISK

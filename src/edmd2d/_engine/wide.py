@@ -78,12 +78,16 @@ from .predict import (
     INF,
     box_wall_time,
     box_wall_time_accel,
+    box_wall_time_grow,
     exit_time,
     exit_time_accel,
+    growth_factor,
     pair_time,
+    pair_time_grow,
     point_time,
     segment_time,
     segment_time_accel,
+    segment_time_grow,
 )
 
 LOW = 0  # the footprint's low edge crossed a cell boundary
@@ -145,16 +149,17 @@ def _centre_cell(k, gi, wide):
 
 
 @kernel
-def fill(S, E, gi, gf, wide, head, nxt, prv):
-    """List every wide disk in the cells of its footprint (from its stored position)
-    and take it out of the list of disks of its cell, where ``grid.build_cells`` put
-    it.  Every prediction must be made afresh afterwards."""
+def fill(S, E, gi, gf, wide, head, nxt, prv, grown):
+    """List every wide disk in the cells of its footprint (from its stored position,
+    its radius ``grown`` times the stored one) and take it out of the list of disks
+    of its cell, where ``grid.build_cells`` put it.  Every prediction must be made
+    afresh afterwards."""
     wide.bhead[:] = -1
     wide.ncell[:] = -1
     for k in range(wide.disk.shape[0]):
         i = wide.disk[k]
         remove(i, np.int64(E[i, CELL]), head, nxt, prv)
-        reach = S[i, R] + wide.half
+        reach = S[i, R] * grown + wide.half
         x0, x1 = footprint(S[i, X], reach, gf[2], gi[0], gi[2] != 0)
         y0, y1 = footprint(S[i, Y], reach, gf[3], gi[1], gi[3] != 0)
         wide.rect[k, 0] = x0
@@ -178,7 +183,7 @@ def detach(E, wide, head, nxt, prv):
 
 @njit
 def scan_cell(i, t, x, y, vx, vy, r, c, S, stamp, gf, wide, best, partner, aux, pst,
-              gravity):
+              gravity, growth):
     """Earliest contact of the narrow disk ``i`` (at ``x, y`` with velocity ``vx, vy``
     at time ``t``) with the wide disks listed in its cell ``c``, if before ``best``."""
     gxi, gyi = acceleration(i, gravity)
@@ -187,7 +192,8 @@ def scan_cell(i, t, x, y, vx, vy, r, c, S, stamp, gf, wide, best, partner, aux, 
         j = wide.disk[wide.nk[m]]
         sx = wide.nsx[m]
         sy = wide.nsy[m]
-        dtc = _pair(i, j, t, x, y, vx, vy, gxi, gyi, r, -sx, -sy, S, gf, gravity, best)
+        dtc = _pair(i, j, t, x, y, vx, vy, gxi, gyi, r, -sx, -sy, S, gf, gravity, growth,
+                    best)
         if dtc < best:
             best = dtc
             partner = j
@@ -198,12 +204,17 @@ def scan_cell(i, t, x, y, vx, vy, r, c, S, stamp, gf, wide, best, partner, aux, 
 
 
 @njit
-def _pair(i, j, t, x, y, vx, vy, gxi, gyi, r, sx, sy, S, gf, gravity, best):
-    """Contact time of ``i`` with the image ``(sx, sy)`` of ``j`` (as the narrow scan
-    computes it, with gravity's parabola against an immovable disk)."""
+def _pair(i, j, t, x, y, vx, vy, gxi, gyi, r, sx, sy, S, gf, gravity, growth, best):
+    """Contact time of ``i`` (stored radius ``r``) with the image ``(sx, sy)`` of ``j``
+    (as the narrow scan computes it: with gravity's parabola against an immovable
+    disk, or growing radii)."""
     xj, yj = position_at(j, t, S, gravity)
     dx = x - (xj + sx * gf[0])
     dy = y - (yj + sy * gf[1])
+    if growth is not None:
+        rr = r + S[j, R]
+        return pair_time_grow(dx, dy, vx - S[j, VX], vy - S[j, VY],
+                              rr * growth_factor(t, growth), rr * growth.rate)
     if gravity is None:
         return pair_time(dx, dy, vx - S[j, VX], vy - S[j, VY], r + S[j, R])
     vxj, vyj = velocity_at(j, t, S, gravity)
@@ -216,10 +227,11 @@ def _pair(i, j, t, x, y, vx, vy, gxi, gyi, r, sx, sy, S, gf, gravity, best):
 @njit
 def _scan_block(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, gi, gf,
                 head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner,
-                aux, pst, gravity):
-    """Earliest contact of wide disk ``i`` (index ``k``) with the narrow disks, the
-    wide disks and the wall segments listed in the unwrapped cells ``[u0, u1] x [v0,
-    v1]`` of its footprint."""
+                aux, pst, gravity, growth):
+    """Earliest contact of wide disk ``i`` (index ``k``, stored radius ``r``) with the
+    narrow disks, the wide disks and the wall segments listed in the unwrapped cells
+    ``[u0, u1] x [v0, v1]`` of its footprint."""
+    f = growth_factor(t, growth)
     ncx = gi[0]
     for v in range(v0, v1 + 1):
         ky = 0
@@ -234,7 +246,8 @@ def _scan_block(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, gi, 
             # The narrow disks of the cell, seen from i's image over it (x - k L).
             j = head[c]
             while j >= 0:
-                dtc = _pair(i, j, t, x, y, vx, vy, gx, gy, r, kx, ky, S, gf, gravity, best)
+                dtc = _pair(i, j, t, x, y, vx, vy, gx, gy, r, kx, ky, S, gf, gravity, growth,
+                            best)
                 if dtc < best:
                     best = dtc
                     kind = DISK
@@ -252,7 +265,7 @@ def _scan_block(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, gi, 
                     sy = ky - wide.nsy[m]
                     if -1 <= sx <= 1 and -1 <= sy <= 1:
                         dtc = _pair(i, j, t, x, y, vx, vy, gx, gy, r, sx, sy, S, gf,
-                                    gravity, best)
+                                    gravity, growth, best)
                         if dtc < best:
                             best = dtc
                             kind = DISK
@@ -265,7 +278,11 @@ def _scan_block(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, gi, 
                     w = wwall[q]
                     shx = wsx[q] * gf[0]
                     shy = wsy[q] * gf[1]
-                    if gravity is None or (gx == 0.0 and gy == 0.0):
+                    if growth is not None:
+                        dtw, part = segment_time_grow(x, y, vx, vy, r * f, r * growth.rate,
+                                                      wa[w, 0] + shx, wa[w, 1] + shy,
+                                                      wb[w, 0] + shx, wb[w, 1] + shy)
+                    elif gravity is None or (gx == 0.0 and gy == 0.0):
                         dtw, part = segment_time(x, y, vx, vy, r, wa[w, 0] + shx,
                                                  wa[w, 1] + shy, wb[w, 0] + shx,
                                                  wb[w, 1] + shy)
@@ -292,7 +309,7 @@ def _edge_time(e, v, a, c, side, ncell, periodic, gravity):
 
 @njit
 def predict(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall,
-            wsx, wsy, gravity, wide):
+            wsx, wsy, gravity, growth, wide):
     """:func:`.scan.predict` for a wide disk: its next event from time ``t``.
 
     ``code`` -1: a full prediction (box walls and every cell of its footprint).
@@ -333,17 +350,21 @@ def predict(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, w
                 best, kind, partner, aux, pst = _scan_block(
                     i, k, t, x, y, vx, vy, gx, gy, r, u, u, y0, y1, S, stamp, gi, gf,
                     head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
-                    partner, aux, pst, gravity)
+                    partner, aux, pst, gravity, growth)
             else:
                 v = y0 if what == LOW else y1
                 best, kind, partner, aux, pst = _scan_block(
                     i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, v, v, S, stamp, gi, gf,
                     head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
-                    partner, aux, pst, gravity)
+                    partner, aux, pst, gravity, growth)
     else:
         best = INF
+        f = growth_factor(t, growth)
+        dr = 0.0 if growth is None else r * growth.rate
         if gi[2] == 0:
-            if gravity is None:
+            if growth is not None:
+                dtw, side = box_wall_time_grow(x, vx, r * f, dr, gf[0])
+            elif gravity is None:
                 dtw, side = box_wall_time(x, vx, r, gf[0])
             else:
                 dtw, side = box_wall_time_accel(x, vx, gx, r, gf[0])
@@ -352,7 +373,9 @@ def predict(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, w
                 kind = BOX
                 aux = side
         if gi[3] == 0:
-            if gravity is None:
+            if growth is not None:
+                dtw, side = box_wall_time_grow(y, vy, r * f, dr, gf[1])
+            elif gravity is None:
                 dtw, side = box_wall_time(y, vy, r, gf[1])
             else:
                 dtw, side = box_wall_time_accel(y, vy, gy, r, gf[1])
@@ -362,15 +385,18 @@ def predict(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, w
                 aux = 2 + side
         best, kind, partner, aux, pst = _scan_block(
             i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, y0, y1, S, stamp, gi, gf, head, nxt,
-            wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner, aux, pst, gravity)
+            wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner, aux, pst, gravity,
+            growth)
     if not partial or kind != NONE:
         tcand[i] = t + best
         E[i, KIND] = kind
         E[i, PARTNER] = partner
         E[i, AUX] = aux
         E[i, PSTAMP] = pst
-    # The next change of the footprint (or wrap of the centre).
-    reach = r + wide.half
+    # The next change of the footprint (or wrap of the centre).  Under growth an edge
+    # moves at the velocity plus or minus the radius's growth speed.
+    reach = r * growth_factor(t, growth) + wide.half
+    grow = 0.0 if growth is None else r * growth.rate
     first = INF
     sched = 0
     for axis in range(2):
@@ -384,9 +410,11 @@ def predict(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, w
         hi = wide.rect[k, 2 * axis + 1]
         for what in range(3):
             if what == LOW:
-                dt, sign = _edge_time(p - reach, vel, a, lo, side, ncell, periodic, gravity)
+                dt, sign = _edge_time(p - reach, vel - grow, a, lo, side, ncell, periodic,
+                                      gravity)
             elif what == HIGH:
-                dt, sign = _edge_time(p + reach, vel, a, hi, side, ncell, periodic, gravity)
+                dt, sign = _edge_time(p + reach, vel + grow, a, hi, side, ncell, periodic,
+                                      gravity)
             elif periodic:
                 dt, sign = _edge_time(p, vel, a, 0, gf[axis], 1, True, gravity)
             else:

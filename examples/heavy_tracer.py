@@ -2,12 +2,11 @@
 
 Physics: one disk of radius 10 (mass 400: the bath's areal density) in a periodic
 bath of 2 x 10^4 disks of radius 0.5 at packing fraction 0.3 and kT = 1.  It is hit
-from every side along its long rim, some 50 times per unit time, and wanders: its
-velocity stays Maxwellian at the bath's temperature (equipartition, ``M <V^2> / 2 =
-kT (1 - M / M_all)`` in 2D with the total momentum fixed, checked here with an error
-from blocks of the run, each some three times its velocity's relaxation time) and its
-mean squared
-displacement turns from ballistic (``2 kT t^2 / M``) to diffusive (``4 D t``).
+from every side along its long rim, some 50 times per unit time, and wanders: the
+script prints its mean kinetic energy beside equipartition's ``M <V^2> / 2 = kT (1 -
+M / M_all)`` (2D, the total momentum fixed), with an error from ten blocks of the
+run, and draws its mean squared displacement, which turns from ballistic (``2 kT t^2
+/ M``) to diffusive (``4 D t``).
 
 Such a tracer used to slow every disk of the bath: the grid's cells held the largest
 disk, so every small disk scanned cells twenty diameters wide.  The wide grid (the
@@ -41,7 +40,7 @@ PACKING = 0.3
 R_TRACER, R_BATH = 10.0, 0.5
 KT = 1.0
 EQUILIBRATE = 20.0
-DURATION = 400.0  # of the sampled run
+DURATION = 2000.0  # of the sampled run
 SAMPLE = 0.5  # time between samples of the tracer
 BLOCKS = 10
 TIMED = 20  # collisions per disk timed on each grid

@@ -12,13 +12,17 @@ earliest contact with everything in the old neighbourhood (still exact if its
 partner's stamp is unchanged); disks that entered the old neighbourhood since then
 predicted against ``i`` themselves; so only the row of cells that comes into range
 must be scanned.  A wrap, or a stale kept candidate, falls back to a full scan.
+
+Wide disks (:mod:`.wide`): a narrow disk also scans the wide disks listed in its own
+cell (:func:`_scan_wide_list`); a wide disk is predicted by :func:`_predict_wide`, over
+the cells of its footprint, and schedules the next change of its footprint instead
+of a cell crossing.
 """
 
 from __future__ import annotations
 
 from .._jit import njit
 from . import prefetch, sheared
-from . import wide as _wide
 from .flight import acceleration, position_at, velocity_at
 from .grid import neighbour
 from .layout import (
@@ -55,6 +59,7 @@ from .predict import (
     segment_time_accel,
     segment_time_grow,
 )
+from .wide import HIGH, LOW
 
 
 @njit
@@ -161,6 +166,39 @@ def _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall, wsx, 
 
 
 @njit(inline="always")
+def _box_walls(x, y, vx, vy, gx, gy, r, dr, gi, gf, gravity, growth):
+    """Earliest contact with the box walls of the walled axes: ``(dt, kind, side)``,
+    ``kind`` ``BOX`` or ``NONE`` (``r``: the radius now; ``dr``: its growth speed
+    under growth; ``gx, gy``: the acceleration under gravity)."""
+    best = INF
+    kind = NONE
+    aux = 0
+    if gi[2] == 0:
+        if growth is not None:
+            dtw, side = box_wall_time_grow(x, vx, r, dr, gf[0])
+        elif gravity is None:
+            dtw, side = box_wall_time(x, vx, r, gf[0])
+        else:
+            dtw, side = box_wall_time_accel(x, vx, gx, r, gf[0])
+        if dtw < best:
+            best = dtw
+            kind = BOX
+            aux = side
+    if gi[3] == 0:
+        if growth is not None:
+            dtw, side = box_wall_time_grow(y, vy, r, dr, gf[1])
+        elif gravity is None:
+            dtw, side = box_wall_time(y, vy, r, gf[1])
+        else:
+            dtw, side = box_wall_time_accel(y, vy, gy, r, gf[1])
+        if dtw < best:
+            best = dtw
+            kind = BOX
+            aux = 2 + side
+    return best, kind, aux
+
+
+@njit(inline="always")
 def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tcand, E, gi, gf, gravity):
     """The time of disk ``i``'s next event: the earlier of its kept candidate and
     leaving its cell (whose direction is recorded in ``E[i, KIND]``)."""
@@ -201,7 +239,7 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
     (One function for both, compiled into the event loop at a single place.)
     """
     if wide is not None and wide.index[i] >= 0:
-        return _wide.predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt, wa,
+        return _predict_wide(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt, wa,
                              wb, wstart, wwall, wsx, wsy, gravity, growth, wide)
     if gravity is not None and gravity.support[i] & RESTING:
         # At rest: no event of its own (flying disks hold their contacts with it).
@@ -248,31 +286,7 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
             nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
             if nyc >= 0:
                 prefetch(head, max(cx - 1, 0) + gi[0] * nyc)
-        best = INF
-        kind = NONE
-        aux = 0
-        if gi[2] == 0:
-            if growth is not None:
-                dtw, side = box_wall_time_grow(x, vx, r, dr, gf[0])
-            elif gravity is None:
-                dtw, side = box_wall_time(x, vx, r, gf[0])
-            else:
-                dtw, side = box_wall_time_accel(x, vx, gx, r, gf[0])
-            if dtw < best:
-                best = dtw
-                kind = BOX
-                aux = side
-        if gi[3] == 0:
-            if growth is not None:
-                dtw, side = box_wall_time_grow(y, vy, r, dr, gf[1])
-            elif gravity is None:
-                dtw, side = box_wall_time(y, vy, r, gf[1])
-            else:
-                dtw, side = box_wall_time_accel(y, vy, gy, r, gf[1])
-            if dtw < best:
-                best = dtw
-                kind = BOX
-                aux = 2 + side
+        best, kind, aux = _box_walls(x, y, vx, vy, gx, gy, r, dr, gi, gf, gravity, growth)
     partner = -1
     pst = 0
     bd, pd, ad, ps = _scan_disks(i, t, x, y, vx, vy, S[i, R], cx, cy, ox0, ox1, oy0, oy1,
@@ -285,8 +299,8 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
         aux = ad
         pst = ps
     if wide is not None:
-        bd, pd, ad, ps = _wide.scan_cell(i, t, x, y, vx, vy, S[i, R], c, S, stamp, gf, wide,
-                                         best, -1, 0, 0, gravity, growth)
+        bd, pd, ad, ps = _scan_wide_list(i, t, x, y, vx, vy, S[i, R], c, S, stamp, gf,
+                                         wide, best, -1, 0, 0, gravity, growth)
         if bd < best:
             best = bd
             kind = DISK
@@ -309,3 +323,207 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
         E[i, PSTAMP] = pst
     return _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tcand, E, gi, gf, gravity)
 
+
+# --------------------------------------------------------------------------- wide disks
+@njit
+def _scan_wide_list(i, t, x, y, vx, vy, r, c, S, stamp, gf, wide, best, partner, aux,
+                    pst, gravity, growth):
+    """Earliest contact of the narrow disk ``i`` (at ``x, y`` with velocity ``vx, vy``
+    at time ``t``) with the wide disks listed in its cell ``c``, if before ``best``."""
+    gxi, gyi = acceleration(i, gravity)
+    m = wide.bhead[c]
+    while m >= 0:
+        j = wide.disk[wide.nk[m]]
+        sx = wide.nsx[m]
+        sy = wide.nsy[m]
+        dtc = _wide_pair(i, j, t, x, y, vx, vy, gxi, gyi, r, -sx, -sy, S, gf, gravity,
+                         growth, best)
+        if dtc < best:
+            best = dtc
+            partner = j
+            aux = pack_shift(-sx, -sy)
+            pst = stamp[j]
+        m = wide.nnext[m]
+    return best, partner, aux, pst
+
+
+@njit
+def _wide_pair(i, j, t, x, y, vx, vy, gxi, gyi, r, sx, sy, S, gf, gravity, growth, best):
+    """Contact time of ``i`` (stored radius ``r``) with the image ``(sx, sy)`` of ``j``
+    (as the narrow scan computes it: with gravity's parabola against an immovable
+    disk, or growing radii)."""
+    xj, yj = position_at(j, t, S, gravity)
+    dx = x - (xj + sx * gf[0])
+    dy = y - (yj + sy * gf[1])
+    if growth is not None:
+        rr = r + S[j, R]
+        return pair_time_grow(dx, dy, vx - S[j, VX], vy - S[j, VY],
+                              rr * growth_factor(t, growth), rr * growth.rate)
+    if gravity is None:
+        return pair_time(dx, dy, vx - S[j, VX], vy - S[j, VY], r + S[j, R])
+    return _pair_time_accel(j, t, dx, dy, vx, vy, gxi, gyi, r, S, gravity, best)
+
+
+@njit
+def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, gi, gf,
+                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner,
+                    aux, pst, gravity, growth):
+    """Earliest contact of wide disk ``i`` (index ``k``, stored radius ``r``) with the
+    narrow disks, the wide disks and the wall segments listed in the unwrapped cells
+    ``[u0, u1] x [v0, v1]`` of its footprint."""
+    f = growth_factor(t, growth)
+    dr = 0.0 if growth is None else r * growth.rate
+    ncx = gi[0]
+    for v in range(v0, v1 + 1):
+        ky = 0
+        if gi[3] != 0:
+            ky = v // gi[1]
+        cy = v - ky * gi[1]
+        for u in range(u0, u1 + 1):
+            kx = 0
+            if gi[2] != 0:
+                kx = u // ncx
+            c = (u - kx * ncx) + ncx * cy
+            # The narrow disks of the cell, seen from i's image over it (x - k L).
+            j = head[c]
+            while j >= 0:
+                dtc = _wide_pair(i, j, t, x, y, vx, vy, gx, gy, r, kx, ky, S, gf, gravity,
+                                 growth, best)
+                if dtc < best:
+                    best = dtc
+                    kind = DISK
+                    partner = j
+                    aux = pack_shift(kx, ky)
+                    pst = stamp[j]
+                j = nxt[j]
+            # The other wide disks listed there: j's image is at x_j - k' L.
+            m = wide.bhead[c]
+            while m >= 0:
+                kk = wide.nk[m]
+                if kk != k:
+                    j = wide.disk[kk]
+                    sx = kx - wide.nsx[m]
+                    sy = ky - wide.nsy[m]
+                    if -1 <= sx <= 1 and -1 <= sy <= 1:
+                        dtc = _wide_pair(i, j, t, x, y, vx, vy, gx, gy, r, sx, sy, S, gf,
+                                         gravity, growth, best)
+                        if dtc < best:
+                            best = dtc
+                            kind = DISK
+                            partner = j
+                            aux = pack_shift(sx, sy)
+                            pst = stamp[j]
+                m = wide.nnext[m]
+            bw, pw, aw = _scan_walls(x, y, vx, vy, gx, gy, r * f, dr, c, gf, wa, wb, wstart,
+                                     wwall, wsx, wsy, best, -1, 0, gravity, growth)
+            if bw < best:
+                best = bw
+                kind = SEGMENT
+                partner = pw
+                aux = aw
+                pst = 0
+    return best, kind, partner, aux, pst
+
+
+@njit
+def _edge_time(e, v, a, c, side, ncell, periodic, gravity):
+    if gravity is None:
+        return exit_time(e, v, c, side, ncell, periodic)
+    return exit_time_accel(e, v, a, c, side, ncell, periodic)
+
+
+@njit
+def _predict_wide(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall,
+            wsx, wsy, gravity, growth, wide):
+    """:func:`predict` for a wide disk (:mod:`.wide`): its next event from time ``t``.
+
+    ``code`` -1: a full prediction (box walls and every cell of its footprint).
+    Otherwise the crossing ``code`` (``4 * what + direction``) has just grown its
+    footprint by the column or row it names, or shrunk it: if its kept candidate is
+    still valid only the new cells are scanned against it (none for a shrink)."""
+    k = wide.index[i]
+    if gravity is None:
+        vx = S[i, VX]
+        vy = S[i, VY]
+        gx = 0.0
+        gy = 0.0
+    else:
+        vx, vy = velocity_at(i, t, S, gravity)
+        gx, gy = acceleration(i, gravity)
+    x, y = position_at(i, t, S, gravity)
+    r = S[i, R]
+    x0 = wide.rect[k, 0]
+    x1 = wide.rect[k, 1]
+    y0 = wide.rect[k, 2]
+    y1 = wide.rect[k, 3]
+    partial = code >= 0 and code < 8 and not (
+        kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
+    kind = NONE
+    partner = -1
+    aux = 0
+    pst = 0
+    if partial:
+        best = tcand[i] - t
+        what = code >> 2
+        direction = code & 3
+        # (Grown: low edge moving down, or high edge moving up.)
+        grown = (what == LOW and (direction & 1) == 1) or (what == HIGH and
+                                                         (direction & 1) == 0)
+        if grown:
+            if direction < 2:
+                u = x0 if what == LOW else x1
+                best, kind, partner, aux, pst = _scan_footprint(
+                    i, k, t, x, y, vx, vy, gx, gy, r, u, u, y0, y1, S, stamp, gi, gf,
+                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
+                    partner, aux, pst, gravity, growth)
+            else:
+                v = y0 if what == LOW else y1
+                best, kind, partner, aux, pst = _scan_footprint(
+                    i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, v, v, S, stamp, gi, gf,
+                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
+                    partner, aux, pst, gravity, growth)
+    else:
+        dr = 0.0 if growth is None else r * growth.rate
+        best, kind, aux = _box_walls(x, y, vx, vy, gx, gy, r * growth_factor(t, growth), dr,
+                                     gi, gf, gravity, growth)
+        best, kind, partner, aux, pst = _scan_footprint(
+            i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, y0, y1, S, stamp, gi, gf, head, nxt,
+            wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner, aux, pst, gravity,
+            growth)
+    if not partial or kind != NONE:
+        tcand[i] = t + best
+        E[i, KIND] = kind
+        E[i, PARTNER] = partner
+        E[i, AUX] = aux
+        E[i, PSTAMP] = pst
+    # The next change of the footprint (or wrap of the centre).  Under growth an edge
+    # moves at the velocity plus or minus the radius's growth speed.
+    reach = r * growth_factor(t, growth) + wide.half
+    grow = 0.0 if growth is None else r * growth.rate
+    first = INF
+    sched = 0
+    for axis in range(2):
+        side = gf[2 + axis]
+        ncell = gi[axis]
+        periodic = gi[2 + axis] != 0
+        p = x if axis == 0 else y
+        vel = vx if axis == 0 else vy
+        a = gx if axis == 0 else gy
+        lo = wide.rect[k, 2 * axis]
+        hi = wide.rect[k, 2 * axis + 1]
+        for what in range(3):
+            if what == LOW:
+                dt, sign = _edge_time(p - reach, vel - grow, a, lo, side, ncell, periodic,
+                                      gravity)
+            elif what == HIGH:
+                dt, sign = _edge_time(p + reach, vel + grow, a, hi, side, ncell, periodic,
+                                      gravity)
+            elif periodic:
+                dt, sign = _edge_time(p, vel, a, 0, gf[axis], 1, True, gravity)
+            else:
+                dt, sign = INF, 0
+            if dt < first:
+                first = dt
+                sched = 4 * what + 2 * axis + (0 if sign > 0 else 1)
+    E[i, KIND] = pack_kind(kind_of(E[i, KIND]), sched)
+    return min(tcand[i], t + first)

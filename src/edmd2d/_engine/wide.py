@@ -37,6 +37,9 @@ the box, which is an event of its own (its footprint and every node's shift move
 period, and every prediction against it is invalidated).  Walled axes clamp the
 footprint to the grid; an edge beyond the last cell schedules nothing.
 
+Their predictions are in :mod:`.scan` (``_predict_wide``, ``_scan_wide_list``), beside
+the narrow disks', whose wall scans they share; this module keeps the lists.
+
 A wide disk's scheduled crossing is coded in the high bits of ``E[i, KIND]`` as
 ``4 * what + direction`` (direction 0-3: +x, -x, +y, -y; ``what``: 0 the low edge,
 1 the high edge, 2 the centre's wrap).  Node ``m`` of wide disk ``k`` for the unwrapped
@@ -51,43 +54,13 @@ import math
 import numpy as np
 
 from .._jit import kernel, njit
-from .flight import acceleration, position_at, velocity_at
 from .grid import insert, remove
 from .layout import (
-    AUX,
-    BOX,
     CELL,
-    DISK,
-    KIND,
-    NONE,
-    PARTNER,
-    PSTAMP,
-    SEGMENT,
-    VX,
-    VY,
     R,
     Wide,
     X,
     Y,
-    kind_of,
-    pack_kind,
-    pack_segment,
-    pack_shift,
-)
-from .predict import (
-    INF,
-    box_wall_time,
-    box_wall_time_accel,
-    box_wall_time_grow,
-    exit_time,
-    exit_time_accel,
-    growth_factor,
-    pair_time,
-    pair_time_grow,
-    point_time,
-    segment_time,
-    segment_time_accel,
-    segment_time_grow,
 )
 
 LOW = 0  # the footprint's low edge crossed a cell boundary
@@ -179,251 +152,6 @@ def detach(E, wide, head, nxt, prv):
     for k in range(wide.disk.shape[0]):
         i = wide.disk[k]
         remove(i, np.int64(E[i, CELL]), head, nxt, prv)
-
-
-@njit
-def scan_cell(i, t, x, y, vx, vy, r, c, S, stamp, gf, wide, best, partner, aux, pst,
-              gravity, growth):
-    """Earliest contact of the narrow disk ``i`` (at ``x, y`` with velocity ``vx, vy``
-    at time ``t``) with the wide disks listed in its cell ``c``, if before ``best``."""
-    gxi, gyi = acceleration(i, gravity)
-    m = wide.bhead[c]
-    while m >= 0:
-        j = wide.disk[wide.nk[m]]
-        sx = wide.nsx[m]
-        sy = wide.nsy[m]
-        dtc = _pair(i, j, t, x, y, vx, vy, gxi, gyi, r, -sx, -sy, S, gf, gravity, growth,
-                    best)
-        if dtc < best:
-            best = dtc
-            partner = j
-            aux = pack_shift(-sx, -sy)
-            pst = stamp[j]
-        m = wide.nnext[m]
-    return best, partner, aux, pst
-
-
-@njit
-def _pair(i, j, t, x, y, vx, vy, gxi, gyi, r, sx, sy, S, gf, gravity, growth, best):
-    """Contact time of ``i`` (stored radius ``r``) with the image ``(sx, sy)`` of ``j``
-    (as the narrow scan computes it: with gravity's parabola against an immovable
-    disk, or growing radii)."""
-    xj, yj = position_at(j, t, S, gravity)
-    dx = x - (xj + sx * gf[0])
-    dy = y - (yj + sy * gf[1])
-    if growth is not None:
-        rr = r + S[j, R]
-        return pair_time_grow(dx, dy, vx - S[j, VX], vy - S[j, VY],
-                              rr * growth_factor(t, growth), rr * growth.rate)
-    if gravity is None:
-        return pair_time(dx, dy, vx - S[j, VX], vy - S[j, VY], r + S[j, R])
-    vxj, vyj = velocity_at(j, t, S, gravity)
-    gxj, gyj = acceleration(j, gravity)
-    if gxi == gxj and gyi == gyj:
-        return pair_time(dx, dy, vx - vxj, vy - vyj, r + S[j, R])
-    return point_time(dx, dy, vx - vxj, vy - vyj, gxi - gxj, gyi - gyj, r + S[j, R], best)
-
-
-@njit
-def _scan_block(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, gi, gf,
-                head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner,
-                aux, pst, gravity, growth):
-    """Earliest contact of wide disk ``i`` (index ``k``, stored radius ``r``) with the
-    narrow disks, the wide disks and the wall segments listed in the unwrapped cells
-    ``[u0, u1] x [v0, v1]`` of its footprint."""
-    f = growth_factor(t, growth)
-    ncx = gi[0]
-    for v in range(v0, v1 + 1):
-        ky = 0
-        if gi[3] != 0:
-            ky = v // gi[1]
-        cy = v - ky * gi[1]
-        for u in range(u0, u1 + 1):
-            kx = 0
-            if gi[2] != 0:
-                kx = u // ncx
-            c = (u - kx * ncx) + ncx * cy
-            # The narrow disks of the cell, seen from i's image over it (x - k L).
-            j = head[c]
-            while j >= 0:
-                dtc = _pair(i, j, t, x, y, vx, vy, gx, gy, r, kx, ky, S, gf, gravity, growth,
-                            best)
-                if dtc < best:
-                    best = dtc
-                    kind = DISK
-                    partner = j
-                    aux = pack_shift(kx, ky)
-                    pst = stamp[j]
-                j = nxt[j]
-            # The other wide disks listed there: j's image is at x_j - k' L.
-            m = wide.bhead[c]
-            while m >= 0:
-                kk = wide.nk[m]
-                if kk != k:
-                    j = wide.disk[kk]
-                    sx = kx - wide.nsx[m]
-                    sy = ky - wide.nsy[m]
-                    if -1 <= sx <= 1 and -1 <= sy <= 1:
-                        dtc = _pair(i, j, t, x, y, vx, vy, gx, gy, r, sx, sy, S, gf,
-                                    gravity, growth, best)
-                        if dtc < best:
-                            best = dtc
-                            kind = DISK
-                            partner = j
-                            aux = pack_shift(sx, sy)
-                            pst = stamp[j]
-                m = wide.nnext[m]
-            if wa.shape[0] > 0:
-                for q in range(wstart[c], wstart[c + 1]):
-                    w = wwall[q]
-                    shx = wsx[q] * gf[0]
-                    shy = wsy[q] * gf[1]
-                    if growth is not None:
-                        dtw, part = segment_time_grow(x, y, vx, vy, r * f, r * growth.rate,
-                                                      wa[w, 0] + shx, wa[w, 1] + shy,
-                                                      wb[w, 0] + shx, wb[w, 1] + shy)
-                    elif gravity is None or (gx == 0.0 and gy == 0.0):
-                        dtw, part = segment_time(x, y, vx, vy, r, wa[w, 0] + shx,
-                                                 wa[w, 1] + shy, wb[w, 0] + shx,
-                                                 wb[w, 1] + shy)
-                    else:
-                        dtw, part = segment_time_accel(x, y, vx, vy, gx, gy, r,
-                                                       wa[w, 0] + shx, wa[w, 1] + shy,
-                                                       wb[w, 0] + shx, wb[w, 1] + shy,
-                                                       best)
-                    if dtw < best:
-                        best = dtw
-                        kind = SEGMENT
-                        partner = w
-                        aux = pack_segment(part, pack_shift(wsx[q], wsy[q]))
-                        pst = 0
-    return best, kind, partner, aux, pst
-
-
-@njit
-def _edge_time(e, v, a, c, side, ncell, periodic, gravity):
-    if gravity is None:
-        return exit_time(e, v, c, side, ncell, periodic)
-    return exit_time_accel(e, v, a, c, side, ncell, periodic)
-
-
-@njit
-def predict(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall,
-            wsx, wsy, gravity, growth, wide):
-    """:func:`.scan.predict` for a wide disk: its next event from time ``t``.
-
-    ``code`` -1: a full prediction (box walls and every cell of its footprint).
-    Otherwise the crossing ``code`` (``4 * what + direction``) has just grown its
-    footprint by the column or row it names, or shrunk it: if its kept candidate is
-    still valid only the new cells are scanned against it (none for a shrink)."""
-    k = wide.index[i]
-    if gravity is None:
-        vx = S[i, VX]
-        vy = S[i, VY]
-        gx = 0.0
-        gy = 0.0
-    else:
-        vx, vy = velocity_at(i, t, S, gravity)
-        gx, gy = acceleration(i, gravity)
-    x, y = position_at(i, t, S, gravity)
-    r = S[i, R]
-    x0 = wide.rect[k, 0]
-    x1 = wide.rect[k, 1]
-    y0 = wide.rect[k, 2]
-    y1 = wide.rect[k, 3]
-    partial = code >= 0 and code < 8 and not (
-        kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
-    kind = NONE
-    partner = -1
-    aux = 0
-    pst = 0
-    if partial:
-        best = tcand[i] - t
-        what = code >> 2
-        direction = code & 3
-        # (Grown: low edge moving down, or high edge moving up.)
-        grown = (what == LOW and (direction & 1) == 1) or (what == HIGH and
-                                                         (direction & 1) == 0)
-        if grown:
-            if direction < 2:
-                u = x0 if what == LOW else x1
-                best, kind, partner, aux, pst = _scan_block(
-                    i, k, t, x, y, vx, vy, gx, gy, r, u, u, y0, y1, S, stamp, gi, gf,
-                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
-                    partner, aux, pst, gravity, growth)
-            else:
-                v = y0 if what == LOW else y1
-                best, kind, partner, aux, pst = _scan_block(
-                    i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, v, v, S, stamp, gi, gf,
-                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
-                    partner, aux, pst, gravity, growth)
-    else:
-        best = INF
-        f = growth_factor(t, growth)
-        dr = 0.0 if growth is None else r * growth.rate
-        if gi[2] == 0:
-            if growth is not None:
-                dtw, side = box_wall_time_grow(x, vx, r * f, dr, gf[0])
-            elif gravity is None:
-                dtw, side = box_wall_time(x, vx, r, gf[0])
-            else:
-                dtw, side = box_wall_time_accel(x, vx, gx, r, gf[0])
-            if dtw < best:
-                best = dtw
-                kind = BOX
-                aux = side
-        if gi[3] == 0:
-            if growth is not None:
-                dtw, side = box_wall_time_grow(y, vy, r * f, dr, gf[1])
-            elif gravity is None:
-                dtw, side = box_wall_time(y, vy, r, gf[1])
-            else:
-                dtw, side = box_wall_time_accel(y, vy, gy, r, gf[1])
-            if dtw < best:
-                best = dtw
-                kind = BOX
-                aux = 2 + side
-        best, kind, partner, aux, pst = _scan_block(
-            i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, y0, y1, S, stamp, gi, gf, head, nxt,
-            wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner, aux, pst, gravity,
-            growth)
-    if not partial or kind != NONE:
-        tcand[i] = t + best
-        E[i, KIND] = kind
-        E[i, PARTNER] = partner
-        E[i, AUX] = aux
-        E[i, PSTAMP] = pst
-    # The next change of the footprint (or wrap of the centre).  Under growth an edge
-    # moves at the velocity plus or minus the radius's growth speed.
-    reach = r * growth_factor(t, growth) + wide.half
-    grow = 0.0 if growth is None else r * growth.rate
-    first = INF
-    sched = 0
-    for axis in range(2):
-        side = gf[2 + axis]
-        ncell = gi[axis]
-        periodic = gi[2 + axis] != 0
-        p = x if axis == 0 else y
-        vel = vx if axis == 0 else vy
-        a = gx if axis == 0 else gy
-        lo = wide.rect[k, 2 * axis]
-        hi = wide.rect[k, 2 * axis + 1]
-        for what in range(3):
-            if what == LOW:
-                dt, sign = _edge_time(p - reach, vel - grow, a, lo, side, ncell, periodic,
-                                      gravity)
-            elif what == HIGH:
-                dt, sign = _edge_time(p + reach, vel + grow, a, hi, side, ncell, periodic,
-                                      gravity)
-            elif periodic:
-                dt, sign = _edge_time(p, vel, a, 0, gf[axis], 1, True, gravity)
-            else:
-                dt, sign = INF, 0
-            if dt < first:
-                first = dt
-                sched = 4 * what + 2 * axis + (0 if sign > 0 else 1)
-    E[i, KIND] = pack_kind(kind_of(E[i, KIND]), sched)
-    return min(tcand[i], t + first)
 
 
 @njit

@@ -1,6 +1,7 @@
 """Wide disks (``Simulation(grid=...)``, ``_engine/wide.py``): disks far wider than
 the grid's cells, listed in every cell near them.  The engine on that grid against
-the brute-force reference event for event, with every physics family it runs; against
+the brute-force reference event for event, with every physics family it runs (heated
+walls and a thermostat, restitution, rough disks, gravity, growth); against
 the uniform grid over longer runs; the automatic choice; continuations; refusals."""
 
 from __future__ import annotations
@@ -49,6 +50,8 @@ def _physics(seed, periodic):
     kinds = [{}, dict(restitution=0.85, tc=1e-3), dict(tangential_restitution=0.5),
              dict(thermostat=(1.0, 0.5), seed=seed)]
     out = dict(kinds[seed % 4])
+    if not periodic[1] and seed % 8 == 5:  # (a heated floor)
+        out.update(wall_temperatures={"bottom": 2.0}, seed=seed)
     if not all(periodic) and seed % 3 == 0:
         out["gravity"] = (0.3, -1.0)
         if "restitution" in out:

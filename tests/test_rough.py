@@ -21,6 +21,17 @@ def _canonical(events):
             for t, k, i, j in events]
 
 
+def _assert_as_reference(sim, ref):
+    """The same events (times to 1e-6), velocities, spins and angles as the reference."""
+    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
+    assert [e[1:] for e in got] == [e[1:] for e in want]
+    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-6)
+    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-6)
+    np.testing.assert_allclose(sim.angular_velocities, ref.angular_velocities, rtol=0,
+                               atol=1e-6)
+    np.testing.assert_allclose(sim.angles, ref.angles, rtol=0, atol=1e-6)
+
+
 def _case(seed):
     """A small system, periodic or walled (with a wall segment), of disks of two
     sizes and masses spinning at random, and rough coefficients at random."""
@@ -60,13 +71,7 @@ def test_same_events_and_final_state_as_reference(seed):
     # a difference of order 1.
     sim.advance(until=5.0, collisions=15)
     ref.advance(until=5.0, collisions=15)
-    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
-    assert [e[1:] for e in got] == [e[1:] for e in want]
-    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-6)
-    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-6)
-    np.testing.assert_allclose(sim.angular_velocities, ref.angular_velocities, rtol=0,
-                               atol=1e-6)
-    np.testing.assert_allclose(sim.angles, ref.angles, rtol=0, atol=1e-6)
+    _assert_as_reference(sim, ref)
     assert sim.dissipated_energy() == pytest.approx(ref.dissipated, abs=1e-9)
     assert sim.counts.collisions == ref.collisions
 
@@ -130,13 +135,7 @@ def test_rough_disks_under_gravity_as_the_reference(seed):
     start = sim.total_energy()
     sim.advance(until=8.0, collisions=15)
     ref.advance(until=8.0, collisions=15)
-    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
-    assert [e[1:] for e in got] == [e[1:] for e in want]
-    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-6)
-    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-6)
-    np.testing.assert_allclose(sim.angular_velocities, ref.angular_velocities, rtol=0,
-                               atol=1e-6)
-    np.testing.assert_allclose(sim.angles, ref.angles, rtol=0, atol=1e-6)
+    _assert_as_reference(sim, ref)
     assert sim.total_energy() + sim.dissipated_energy() == pytest.approx(start, rel=1e-11)
     assert sim.dissipated_energy() == pytest.approx(ref.dissipated, abs=1e-9)
 

@@ -24,6 +24,16 @@ def _canonical(events):
             for t, k, i, j in events]
 
 
+def _assert_as_reference(sim, ref):
+    """The same events (times to 1e-8) and final velocities as the reference; returns
+    the events."""
+    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
+    assert [e[1:] for e in got] == [e[1:] for e in want]
+    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-8)
+    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-8)
+    return got
+
+
 def _mixture(seed, n=40, big=3, ratio=5.0, packing=0.35, periodic=True, walls=None,
              aspect=1.0):
     """A disordered gas of ``n`` disks, ``big`` of them ``ratio`` times wider (up to
@@ -92,10 +102,7 @@ def test_same_events_and_final_state_as_reference(seed, periodic, walls_kind):
     # tolerances, and a missed contact shows as another sequence.)
     sim.advance(until=30.0, collisions=20)
     ref.advance(until=30.0, collisions=20)
-    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
-    assert [e[1:] for e in got] == [e[1:] for e in want]
-    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-8)
-    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-8)
+    got = _assert_as_reference(sim, ref)
     assert any(e[1] == "disk" and (e[2] < 3 or e[3] < 3) for e in got) or seed % 5 == 0
 
 
@@ -217,10 +224,7 @@ def test_growing_wide_disks_as_the_reference(seed):
                               growth=0.02)
     sim.advance(until=30.0, collisions=25)
     ref.advance(until=30.0, collisions=25)
-    got, want = _canonical(sim._recorded_events()), _canonical(ref.events)
-    assert [e[1:] for e in got] == [e[1:] for e in want]
-    np.testing.assert_allclose([e[0] for e in got], [e[0] for e in want], rtol=0, atol=1e-8)
-    np.testing.assert_allclose(sim.velocities, ref.velocities, rtol=0, atol=1e-8)
+    _assert_as_reference(sim, ref)
 
 
 def test_a_mixture_of_ratio_ten_compressed_on_the_wide_grid():

@@ -244,6 +244,29 @@ def test_a_mixture_of_ratio_ten_compressed_on_the_wide_grid():
     assert ed.packing_fraction(gas) == pytest.approx(0.6, rel=1e-6)
 
 
+def test_growth_past_what_the_box_fits_falls_back_to_the_uniform_grid():
+    # A wide disk growing until its footprint no longer fits the periodic box: the
+    # rebuild that growth needs then makes a uniform grid, and the run goes on.
+    rng = np.random.default_rng(seed_of(988))
+    box = ed.Box(10.0, 10.0)
+    pos = [np.array([5.0, 5.0])]
+    while len(pos) < 120:
+        p = rng.uniform(0.0, 10.0, 2)
+        d = np.array(pos) - p
+        d -= 10.0 * np.round(d / 10.0)
+        need = np.full(len(pos), 0.3)
+        need[0] = 2.5
+        if (np.hypot(*d.T) > need).all():
+            pos.append(p)
+    rad = np.full(len(pos), 0.05)
+    rad[0] = 1.5
+    sim = ed.Simulation(np.array(pos), rng.normal(size=(len(pos), 2)), rad, box=box,
+                        grid="wide", growth=0.05)
+    assert sim._state.wide is not None
+    sim.advance(until=40.0)
+    assert sim._state.wide is None and sim.radii[0] == pytest.approx(4.5)
+
+
 @pytest.mark.parametrize("kwargs, match", [
     (dict(grid="hierarchical"), "grid must be"),
     (dict(grid="wide", cell_size=20.0), "cell_size"),

@@ -400,7 +400,9 @@ class EngineState:
         box = self.box
         narrow = _wide.choose(radii, box.width, box.height, box.periodic, _CELL_MARGIN,
                               force=self.grid_mode == "wide")
-        if narrow is None and self.grid_mode == "wide":
+        if narrow is None and self.grid_mode == "wide" and "gi" not in vars(self):
+            # (Refused when the simulation is made; a rebuild later, under growth that
+            # made the footprints too wide for the box, falls back to the uniform grid.)
             with about("grid"):
                 raise ValueError("grid='wide' needs a periodic box longer than the "
                                  "widest disk's footprint (its diameter, a narrow "

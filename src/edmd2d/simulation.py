@@ -111,8 +111,9 @@ class Simulation(SimulationBase):
         keeps the uniform grid unless the largest diameter is at least 2.5 times the
         smallest and an estimate of the work finds the wide grid cheaper.  Wide disks
         do not combine with shear, disks at rest or a ``cell_size`` (there ``"auto"``
-        keeps the uniform grid).  Every grid gives the same dynamics; runs
-        on different grids differ by rounding.
+        keeps the uniform grid); under growth, a rebuild after which the wide disks'
+        footprints no longer fit a periodic box makes a uniform grid.  Every grid
+        gives the same dynamics; runs on different grids differ by rounding.
     species : array_like of int, shape (N,), optional
         Each disk's species (``0, 1, ...``), which selects its row of the
         ``restitution`` table; all 0 by default.

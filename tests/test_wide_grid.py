@@ -156,6 +156,26 @@ def test_a_fast_wide_disk_round_a_small_periodic_box():
     assert sim.total_energy() == pytest.approx(start, rel=1e-12)
 
 
+def test_a_wide_disk_meets_a_segment_across_a_periodic_edge():
+    # The segment near x = 9.5 is met through its image at x = -0.5, over cells whose
+    # image shift is not 0 for the wide disk: at t = 0.8, as the reference finds.
+    box = ed.Box(10.0, 10.0)
+    pos = [[1.8, 5.0]] + [[x, y] for y in list(np.arange(0.2, 2.5, 0.3))
+                          + list(np.arange(7.6, 9.9, 0.3)) for x in np.arange(0.15, 9.9, 0.3)]
+    vel = np.zeros((len(pos), 2))
+    vel[0] = [-1.0, 0.0]
+    rad = np.full(len(pos), 0.1)
+    rad[0] = 1.5
+    walls = [ed.Wall((9.5, 4.0), (9.5, 6.0))]
+    sim = ed.Simulation(pos, vel, rad, box=box, walls=walls, grid="wide")
+    sim._record_events(100)
+    sim.advance(until=2.0)
+    ref = ReferenceSimulation(pos, vel, rad, box=box, walls=walls)
+    ref.advance(until=2.0)
+    assert ref.events[0][0] == pytest.approx(0.8)
+    _assert_as_reference(sim, ref)
+
+
 def test_the_automatic_choice():
     few_big = _mixture(seed_of(984), n=2000, big=20, ratio=10.0)
     assert few_big._state.wide is not None  # (random_gas takes the default, auto)

@@ -414,14 +414,30 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
                             aux = pack_shift(sx, sy)
                             pst = stamp[j]
                 m = wide.nnext[m]
-            bw, pw, aw = _scan_walls(x, y, vx, vy, gx, gy, r * f, dr, c, gf, wa, wb, wstart,
-                                     wwall, wsx, wsy, best, -1, 0, gravity, growth)
-            if bw < best:
-                best = bw
-                kind = SEGMENT
-                partner = pw
-                aux = aw
-                pst = 0
+            # The segments listed for the cell, shifted as for a centre in it: i's image
+            # over the cell is one (kx, ky) periods away from i itself.
+            if wa.shape[0] > 0:
+                for q in range(wstart[c], wstart[c + 1]):
+                    w = wwall[q]
+                    qx = wsx[q] + kx
+                    qy = wsy[q] + ky
+                    ax = wa[w, 0] + qx * gf[0]
+                    ay = wa[w, 1] + qy * gf[1]
+                    bx = wb[w, 0] + qx * gf[0]
+                    by = wb[w, 1] + qy * gf[1]
+                    if growth is not None:
+                        dtw, part = segment_time_grow(x, y, vx, vy, r * f, dr, ax, ay, bx, by)
+                    elif gravity is None or (gx == 0.0 and gy == 0.0):
+                        dtw, part = segment_time(x, y, vx, vy, r, ax, ay, bx, by)
+                    else:
+                        dtw, part = segment_time_accel(x, y, vx, vy, gx, gy, r, ax, ay, bx,
+                                                       by, best)
+                    if dtw < best and -1 <= qx <= 1 and -1 <= qy <= 1:
+                        best = dtw
+                        kind = SEGMENT
+                        partner = w
+                        aux = pack_segment(part, pack_shift(qx, qy))
+                        pst = 0
     return best, kind, partner, aux, pst
 
 

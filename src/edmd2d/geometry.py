@@ -1,5 +1,6 @@
-"""The container: the rectangular :class:`Box`, wall :class:`Wall` segments, the names of
-the box walls, and the area that closed polygons of segments enclose (:func:`container`)."""
+"""The container: the rectangular :class:`Box`, wall :class:`Wall` segments, the motions a
+segment may follow (:class:`Translation`, :class:`Oscillation`), the names of the box
+walls, and the area that closed polygons of segments enclose (:func:`container`)."""
 
 from __future__ import annotations
 
@@ -15,7 +16,8 @@ from numpy.typing import ArrayLike
 from ._sums import dot
 from ._validate import as_float_array, as_positive_float, refusal
 
-__all__ = ["Box", "Wall", "BOX_WALLS", "BOX_WALL_EQUATIONS", "container"]
+__all__ = ["Box", "Wall", "Translation", "Oscillation", "BOX_WALLS", "BOX_WALL_EQUATIONS",
+           "container"]
 
 #: The four walls of a box, in the order edmd2d numbers them everywhere (0 to 3: the
 #: walls at ``x = 0``, ``x = width``, ``y = 0``, ``y = height``, that is ``2 * axis``
@@ -177,6 +179,224 @@ class Wall:
         if closed:
             pairs.append((pts[-1], pts[0]))
         return [cls(a, b) for a, b in pairs]
+
+
+@dataclass(frozen=True, init=False)
+class Translation:
+    """A wall segment's motion at a constant velocity over a given distance (a piston).
+
+    The segment keeps its shape and orientation.  It rests where it was given until
+    the time ``begin``, then moves at ``velocity`` until it has travelled
+    ``distance``, and rests there from then on: at time ``t`` it is shifted by
+    ``velocity * clamp(t - begin, 0, distance / |velocity|)``.
+
+    Parameters
+    ----------
+    velocity : array_like, shape (2,)
+        The velocity ``(ux, uy)``, not zero.
+    distance : float
+        How far it moves, > 0.
+    begin : float, optional
+        The time it starts to move; default: the time the simulation starts (or the
+        time the motion is set).
+
+    Examples
+    --------
+    >>> m = Translation((0.0, -0.5), distance=4.0, begin=1.0)
+    >>> m.end
+    9.0
+    >>> m.shift(3.0).tolist(), m.velocity_at(3.0).tolist()
+    ([0.0, -1.0], [0.0, -0.5])
+    >>> m.shift(20.0).tolist(), m.velocity_at(20.0).tolist()
+    ([0.0, -4.0], [0.0, 0.0])
+    """
+
+    velocity: tuple[float, float]
+    distance: float
+    begin: float | None
+
+    def __init__(self, velocity: ArrayLike, distance: float,
+                 begin: float | None = None) -> None:
+        u = as_float_array("Translation velocity", velocity, (2,))
+        if not np.any(u != 0.0):
+            raise refusal(ValueError, "velocity", "Translation velocity must not be zero")
+        object.__setattr__(self, "velocity", (float(u[0]), float(u[1])))
+        object.__setattr__(self, "distance", as_positive_float("Translation distance",
+                                                               distance))
+        if begin is not None:
+            begin = float(as_float_array("Translation begin", begin, ()))
+        object.__setattr__(self, "begin", begin)
+
+    @property
+    def speed(self) -> float:
+        """``|velocity|``."""
+        return float(np.hypot(*self.velocity))
+
+    @property
+    def end(self) -> float:
+        """The time it stops (``begin + distance / speed``; needs ``begin``)."""
+        if self.begin is None:
+            raise ValueError("this Translation has no begin time yet")
+        return self.begin + self.distance / self.speed
+
+    def starting(self, time: float) -> Translation:
+        """The same motion, with ``begin`` set to ``time`` where it was not given.
+
+        Parameters
+        ----------
+        time : float
+
+        Returns
+        -------
+        Translation
+        """
+        return self if self.begin is not None else Translation(self.velocity, self.distance,
+                                                               time)
+
+    def extremes(self) -> np.ndarray:
+        """The two extreme shifts of the path: none and the last.
+
+        Returns
+        -------
+        numpy.ndarray, shape (2, 2)
+        """
+        u = np.array(self.velocity)
+        return np.array([[0.0, 0.0], u * (self.distance / self.speed)])
+
+    def shift(self, t: float) -> np.ndarray:
+        """The segment's displacement at time ``t`` from where it was given.
+
+        Parameters
+        ----------
+        t : float
+
+        Returns
+        -------
+        numpy.ndarray, shape (2,)
+        """
+        assert self.begin is not None
+        moved = min(max(t - self.begin, 0.0), self.distance / self.speed)
+        return np.array(self.velocity) * moved
+
+    def velocity_at(self, t: float) -> np.ndarray:
+        """The segment's velocity at time ``t`` (moving on ``[begin, end)``).
+
+        Parameters
+        ----------
+        t : float
+
+        Returns
+        -------
+        numpy.ndarray, shape (2,)
+        """
+        assert self.begin is not None
+        on = self.begin <= t < self.end
+        return np.array(self.velocity) if on else np.zeros(2)
+
+
+@dataclass(frozen=True, init=False)
+class Oscillation:
+    """A wall segment's sinusoidal motion along a direction (a shaken floor): at time
+    ``t`` it is shifted from where it was given by ``amplitude * sin(omega * t +
+    phase)`` along the unit vector of ``direction``.  The given position is the centre
+    of the motion; ``t`` is the simulation's clock.
+
+    Parameters
+    ----------
+    amplitude : float
+        > 0.
+    omega : float
+        The angular frequency, > 0.
+    direction : array_like, shape (2,), default (0, 1)
+        The direction of motion, not zero (normalised).
+    phase : float, default 0
+
+    Examples
+    --------
+    >>> m = Oscillation(0.5, omega=2.0)
+    >>> m.period
+    3.141592653589793
+    >>> m.shift(0.0).tolist(), m.velocity_at(0.0).tolist()
+    ([0.0, 0.0], [0.0, 1.0])
+    """
+
+    amplitude: float
+    omega: float
+    direction: tuple[float, float]
+    phase: float
+
+    def __init__(self, amplitude: float, omega: float, direction: ArrayLike = (0.0, 1.0),
+                 phase: float = 0.0) -> None:
+        object.__setattr__(self, "amplitude", as_positive_float("Oscillation amplitude",
+                                                                amplitude))
+        object.__setattr__(self, "omega", as_positive_float("Oscillation omega", omega))
+        d = as_float_array("Oscillation direction", direction, (2,))
+        norm = float(np.hypot(d[0], d[1]))
+        if norm == 0.0:
+            raise refusal(ValueError, "direction", "Oscillation direction must not be zero")
+        object.__setattr__(self, "direction", (float(d[0] / norm), float(d[1] / norm)))
+        object.__setattr__(self, "phase", float(as_float_array("Oscillation phase", phase,
+                                                               ())))
+
+    @property
+    def period(self) -> float:
+        """``2 pi / omega``."""
+        return 2.0 * math.pi / self.omega
+
+    def starting(self, time: float) -> Oscillation:
+        """The same motion (its clock is the simulation's: nothing to set).
+
+        Parameters
+        ----------
+        time : float
+
+        Returns
+        -------
+        Oscillation
+        """
+        return self
+
+    def extremes(self) -> np.ndarray:
+        """The two extreme shifts of the path: ``-A`` and ``+A`` along the direction.
+
+        Returns
+        -------
+        numpy.ndarray, shape (2, 2)
+        """
+        d = np.array(self.direction) * self.amplitude
+        return np.array([-d, d])
+
+    def shift(self, t: float) -> np.ndarray:
+        """The segment's displacement at time ``t`` from where it was given.
+
+        Parameters
+        ----------
+        t : float
+
+        Returns
+        -------
+        numpy.ndarray, shape (2,)
+        """
+        return np.array(self.direction) * (self.amplitude * math.sin(self.omega * t +
+                                                                     self.phase))
+
+    def velocity_at(self, t: float) -> np.ndarray:
+        """The segment's velocity at time ``t``.
+
+        Parameters
+        ----------
+        t : float
+
+        Returns
+        -------
+        numpy.ndarray, shape (2,)
+        """
+        return np.array(self.direction) * (self.amplitude * self.omega *
+                                           math.cos(self.omega * t + self.phase))
+
+
+#: The motions a wall segment may follow.
+Motion = Translation | Oscillation
 
 
 def as_walls(walls: Wall | Iterable[Wall] | None) -> list[Wall]:

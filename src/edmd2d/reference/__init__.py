@@ -42,6 +42,16 @@ Rough disks (``tangential_restitution``, ``friction``, ``inertia``,
 the tangential velocity of the contact points into ``-beta`` times itself, limited by
 Coulomb friction, exchanging energy between translation and rotation (``_rough.py``).
 
+Wall segments may move (``wall_motions``): a :class:`~edmd2d.Translation` (a piston,
+at a constant velocity over a distance) or an :class:`~edmd2d.Oscillation` (a shaken
+segment, ``A sin(omega t + phase)`` along a direction) carries a segment without
+turning it.  Against a translation the contact times are those of a fixed segment in
+its frame, phase by phase (rest, motion, rest); against an oscillation, conservative
+advancement on the gap, which cannot step past a contact, then bisection to the last
+float.  A collision reflects the velocity relative to the segment's, and the segment's
+work on the disks is tallied (``wall_work``): ``total_energy() + dissipated -
+sum(wall_work)`` stays constant.
+
 The code comes in six parts: the contact-time oracles (``_times.py``), the search for
 the earliest contact (``_search.py``), the collision rules (``_rules.py``), the rules
 of disks at rest (``_resting.py``) and of rough disks (``_rough.py``), and the event
@@ -68,7 +78,9 @@ from ._times import box_contact_time_accelerated as box_contact_time_accelerated
 from ._times import circle_contact_time as circle_contact_time
 from ._times import circle_contact_time_accelerated as circle_contact_time_accelerated
 from ._times import circle_contact_time_growing as circle_contact_time_growing
+from ._times import oscillating_segment_contact_time as oscillating_segment_contact_time
 from ._times import segment_contact_time as segment_contact_time
 from ._times import segment_contact_time_accelerated as segment_contact_time_accelerated
+from ._times import translating_segment_contact_time as translating_segment_contact_time
 
 __all__ = ["ReferenceSimulation"]

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..geometry import Box, Wall
+from ..geometry import Box, Oscillation, Translation, Wall
 from . import _search
 from ._resting import IMPACTS_AT_ONCE, INSTANT
 from ._rules import CollisionRules
@@ -118,6 +118,14 @@ class ReferenceSimulation(CollisionRules):
         The same at box walls and wall segments (default: the disks' values).  A heated
         wall sets the velocity only, and leaves the spin.  The thermostat draws the spin
         too, at its temperature (a third Gaussian, after the two of the velocity).
+    wall_motions : dict, optional
+        Segments that move: ``{index: motion}`` with an :class:`~edmd2d.Translation`
+        (a ``begin`` left ``None`` becomes ``time``) or an
+        :class:`~edmd2d.Oscillation`.  Segment ``k`` is at ``start + shift(t)``,
+        ``end + shift(t)`` at time ``t`` (see :meth:`wall_positions`); the box does
+        not move.  Not with ``resting``, ``growth``, ``shear_rate``, rough disks or a
+        heated segment (:class:`ValueError`, as for an index that is not a segment's
+        or a value that is neither motion).
 
     Attributes
     ----------
@@ -172,6 +180,12 @@ class ReferenceSimulation(CollisionRules):
     heat_x, heat_y : float
         ``sum d de`` over every disk-disk collision so far, ``de`` the kinetic energy
         the disk gained (the collisional part of :meth:`heat_moment`).
+    motions : dict
+        The moving segments' motions, ``{index: motion}``, each with its ``begin``.
+    wall_work : list of float
+        The energy each wall segment gave the disks, ``sum J.u`` over its contacts
+        (``J`` the impulse on the disk, ``u`` the segment's velocity): 0 for a fixed
+        one.  ``total_energy() + dissipated - sum(wall_work)`` is constant to rounding.
 
     Notes
     -----
@@ -238,6 +252,27 @@ class ReferenceSimulation(CollisionRules):
     ``thermostat_energy``.)  The total peculiar momentum ``sum m u`` changes in flight
     at ``-gamma (P_y, 0)`` only, ``P_y`` the (conserved) y momentum.
 
+    A moving segment (``wall_motions``) is translated, never turned: at time ``t`` its
+    end points are shifted by the motion's ``shift(t)``, and it moves at ``u =
+    velocity_at(t)``.  A disk meets it when its centre comes within ``r`` of it (side or
+    end point) while approaching it in its frame.  For a :class:`~edmd2d.Translation`
+    the velocity is constant on each of three phases (rest, motion, rest): in the
+    segment's frame the disk flies with velocity ``v - u`` against a fixed segment, and
+    the oracles of fixed segments apply, phase by phase.  An
+    :class:`~edmd2d.Oscillation` moves it along ``A sin(omega t + phase)``, which no
+    polynomial describes: conservative advancement on the gap, with bisection at the
+    end, finds the contact to the last float (see
+    ``_times.oscillating_segment_contact_time``), searching no further than the
+    earliest other event.  The collision reflects the velocity relative to the
+    segment's at that instant: with ``n`` the unit normal at the contact,
+    ``vn = (v - u).n < 0`` becomes ``-e_w vn`` (the TC model as at a fixed wall, which
+    is ``u = 0``), ``v' = v - (1 + e_w) vn n``; ``(1 - e_w^2) m vn^2 / 2`` counts as
+    dissipated, and the segment does the work ``J.u`` on the disk, ``J = m (v' - v)``
+    the impulse: kinetic energy changes by ``J.u`` less the loss, which
+    :attr:`wall_work` tallies.  An oscillating segment sends the disk off at its
+    parting speed at least, ``sqrt(2 (A omega^2 + |g|) 2^-40 (r + A))`` (the rule of
+    the engine, ``_engine.moving.parting``), doing that work too.
+
     Examples
     --------
     A head-on collision with ``e = 0.5``: the relative speed 2 drops to 1, and a quarter
@@ -263,6 +298,19 @@ class ReferenceSimulation(CollisionRules):
     [(1.0, 'box', 0, 2), (3.0, 'box', 0, 2), (5.0, 'box', 0, 2)]
     >>> ref.kinetic_energy(), ref.potential_energy(), ref.total_energy()
     (0.0, 12.0, 12.0)
+
+    A piston moving left at 1 meets a disk flying right at 1: the gap of 4 closes at
+    2, and the disk leaves at ``v - 2 (v - u) = -3``, the piston's work ``J.u = 4``
+    making up the kinetic energy gained.
+
+    >>> piston = ReferenceSimulation([[5.0, 5.0]], [[1.0, 0.0]], radii=1.0,
+    ...                              box=ed.Box(20.0, 10.0, periodic=False),
+    ...                              walls=[((10.0, 2.0), (10.0, 8.0))],
+    ...                              wall_motions={0: ed.Translation((-1.0, 0.0), 5.0)})
+    >>> piston.advance(until=2.5).events
+    [(2.0, 'wall', 0, 0)]
+    >>> piston.velocities.tolist(), piston.wall_work, piston.wall_positions().tolist()
+    ([[-3.0, 0.0]], [4.0], [[[7.5, 2.0], [7.5, 8.0]]])
     """
 
     def __init__(self, positions: Pairs, velocities: Pairs, radii: PerDisk,
@@ -279,7 +327,8 @@ class ReferenceSimulation(CollisionRules):
                  tangential_restitution: float = -1.0, friction: float = math.inf,
                  inertia: PerDisk = 0.5, angular_velocities: PerDisk = 0.0,
                  wall_tangential_restitution: float | None = None,
-                 wall_friction: float | None = None) -> None:
+                 wall_friction: float | None = None,
+                 wall_motions: dict | None = None) -> None:
         n = len(positions)
         # (Required: its default only lets it follow masses as a keyword.)
         assert box is not None, "ReferenceSimulation needs a box"
@@ -317,6 +366,14 @@ class ReferenceSimulation(CollisionRules):
         self.shear_rate = float(shear_rate)
         self.t0 = self.time
         self.shear_offset = float(shear_offset)  # the offset at t0
+        if wall_motions:
+            # (Before the checks of shear, which refuse wall segments at all.)
+            refused = [name for name, on in (("resting", resting is not None),
+                                             ("growth", self.growth is not None),
+                                             ("shear_rate", self.shear_rate != 0.0)) if on]
+            if refused:
+                raise ValueError(f"wall_motions do not combine with {', '.join(refused)} "
+                                 "yet")
         if self.shear_rate != 0.0:
             if self.box.periodic != (True, True):
                 raise ValueError("shear_rate needs a box periodic on both axes")
@@ -396,6 +453,10 @@ class ReferenceSimulation(CollisionRules):
                 self.next_check += every
         self.rng = np.random.default_rng(seed)
         self.wall_heat = [0.0] * (4 + len(self.walls))  # energy each wall gave the disks
+        # Segments that move: {index: Translation or Oscillation}, and the work each
+        # segment did on the disks (sum of J.u over its contacts).
+        self.motions = self._motions(wall_motions)
+        self.wall_work = [0.0] * len(self.walls)
         self.thermostat_energy = 0.0
         self.redraws = 0
         self.next_redraw = INF
@@ -413,6 +474,56 @@ class ReferenceSimulation(CollisionRules):
                            else length - self.r[k] - self.p[k][axis])
                     if gap <= 1e-9 * self.r[k]:
                         self.resting[k].add(side)
+
+    def _motions(self, wall_motions):
+        """``wall_motions`` checked: each motion started at the clock, or the refusal of
+        what moving segments do not combine with yet (resting, growth and shear are
+        refused before)."""
+        if not wall_motions:
+            return {}
+        # (Every refusal of wall_motions is a ValueError, whatever is wrong with it.)
+        if not isinstance(wall_motions, dict):
+            raise ValueError(  # noqa: TRY004
+                "wall_motions must be a dict {segment index: Translation or Oscillation}, "
+                f"got {type(wall_motions).__name__}")
+        if self.rough:
+            raise ValueError("wall_motions do not combine with rough disks "
+                             "(tangential_restitution, angular_velocities) yet")
+        motions = {}
+        for k, motion in wall_motions.items():
+            if (isinstance(k, bool) or not isinstance(k, (int, np.integer))
+                    or not 0 <= k < len(self.walls)):
+                raise ValueError(f"wall_motions: {k!r} is not the index of a wall segment "
+                                 f"(0 to {len(self.walls) - 1})")
+            if not isinstance(motion, (Translation, Oscillation)):
+                raise ValueError(  # noqa: TRY004
+                    f"wall_motions[{k}] must be a Translation or an Oscillation, got "
+                    f"{type(motion).__name__}")
+            if 4 + int(k) in self.wall_kt:
+                raise ValueError(f"wall_motions: segment {k} is heated (wall_temperatures); "
+                                 "a heated segment cannot move yet")
+            motions[int(k)] = motion.starting(self.time)
+        return motions
+
+    def wall_positions(self) -> np.ndarray:
+        """Every wall segment's end points now.
+
+        Returns
+        -------
+        ndarray, shape (S, 2, 2)
+            ``[start, end]`` of each of the ``S`` segments at ``time``: those of
+            ``wall_motions`` shifted by their motion's ``shift(time)``, the others as
+            given.
+        """
+        ends = np.array([[w.start, w.end] for w in self.walls], dtype=float).reshape(-1, 2, 2)
+        for k, motion in self.motions.items():
+            ends[k] += motion.shift(self.time)
+        return ends
+
+    def _wall_speed(self):
+        """The fastest a moving segment ever goes (0 if none moves)."""
+        return max((m.speed if isinstance(m, Translation) else m.amplitude * m.omega
+                    for m in self.motions.values()), default=0.0)
 
     # -- the images of space: shifts to try on periodic axes.  Within one look-ahead
     # window (see _horizon) no disk moves more than a quarter of a periodic length, so
@@ -454,6 +565,9 @@ class ReferenceSimulation(CollisionRules):
         lengths = [length for axis, length in enumerate((self.box.width, self.box.height))
                    if self.box.periodic[axis]]
         vmax = max((math.hypot(*v) for v in self.v), default=0.0)
+        if self.motions:
+            # (A moving segment moves no more than a disk as fast as it would.)
+            vmax = max(vmax, self._wall_speed())
         if self._accelerated():
             # A disk moves at most vmax h + |g| h^2 / 2 in a time h: the window is the
             # positive root of vmax h + |g| h^2 / 2 = L / 4, written without cancellation.
@@ -535,17 +649,33 @@ class ReferenceSimulation(CollisionRules):
             ``None``), the disk, its partner (a disk, a segment or a box side) and
             what resolving the contact needs (a pair's periodic image shift
             ``(dx, dy)``, under shear ``(dx, dy, du)`` with the image's extra x
-            velocity; a segment's part that is hit and its end points in that image;
-            ``None`` for a box wall).
+            velocity; a segment's part that is hit and its end points in that image,
+            for a moving segment those at the contact and its velocity there, ``(part,
+            a, b, u)``; ``None`` for a box wall).  The moving segments are tried
+            last, against the earliest other event (:func:`_search.next_moving_wall_event`).
         """
         shifts = self._shifts() if self.shear_rate == 0.0 else self._sheared_shifts()
+        if not self.motions:
+            if self._accelerated():
+                acc = [self._acceleration(k) for k in range(len(self.p))]
+                return _search.next_event_accelerated(self.p, self.v, self.r, acc,
+                                                      self.walls, self.box, shifts)
+            return _search.next_event(self.p, self.v, self.r,
+                                      None if self.growth is None else self.dr, self.walls,
+                                      self.box, shifts)
+        # The fixed bodies first, then the moving segments against the earliest of them.
+        skip = frozenset(self.motions)
         if self._accelerated():
             acc = [self._acceleration(k) for k in range(len(self.p))]
-            return _search.next_event_accelerated(self.p, self.v, self.r, acc, self.walls,
-                                                  self.box, shifts)
-        return _search.next_event(self.p, self.v, self.r,
-                                  None if self.growth is None else self.dr, self.walls,
-                                  self.box, shifts)
+            best = _search.next_event_accelerated(self.p, self.v, self.r, acc, self.walls,
+                                                  self.box, shifts, skip)
+        else:
+            acc = [(0.0, 0.0)] * len(self.p)
+            best = _search.next_event(self.p, self.v, self.r, None, self.walls, self.box,
+                                      shifts, skip)
+        return _search.next_moving_wall_event(best, self.p, self.v, self.r, acc, self.walls,
+                                              self.motions, self.time, shifts,
+                                              self._horizon())
 
     def _drift(self, dt):
         """Move every disk for ``dt``: along its straight line, or on its parabola under

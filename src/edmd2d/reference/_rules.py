@@ -3,7 +3,8 @@
 :class:`CollisionRules` is the part of ``ReferenceSimulation`` that resolves the
 contact its search found, once the disks are moved to it: a pair's impulse with its
 coefficient of restitution and the TC model, a reflection at a box wall or a wall
-segment (side or end point), a heated wall's new velocity, a disk coming to rest on a
+segment (side or end point; a moving segment reflects the velocity relative to its own,
+and does work on the disk), a heated wall's new velocity, a disk coming to rest on a
 box wall that gravity presses it into, and contacts of growing disks.  Under shear a
 pair may meet through a sliding image, whose velocity differs from its disk's; the
 impulse is the same, computed with the image's velocity, and every pair's impulse adds
@@ -18,6 +19,7 @@ from typing import Any
 
 from ._resting import RestingRules
 from ._rough import RoughRules
+from ..geometry import Oscillation
 from ._times import _dot
 
 
@@ -27,8 +29,8 @@ class CollisionRules(RestingRules, RoughRules):
     The state is the one ``ReferenceSimulation`` sets up: the per-disk lists ``p``,
     ``v``, ``r``, ``m``, ``dr``, ``t_last``, ``resting`` and ``species``, the settings
     ``tc``, ``growth``, ``restitution``, ``wall_restitution``, ``gravity`` and
-    ``wall_kt``, the clock ``time``, the tallies ``dissipated``, ``wall_heat``,
-    ``collisions``, ``wall_collisions``, ``virial_xx``, ``virial_yy`` and
+    ``wall_kt``, the moving segments' ``motions``, the clock ``time``, the tallies ``dissipated``, ``wall_heat``,
+    ``wall_work``, ``collisions``, ``wall_collisions``, ``virial_xx``, ``virial_yy`` and
     ``virial_xy``, ``heat_x`` and ``heat_y``, and the random draws ``_u`` and ``_gauss``
     (one stream for the whole run, shared with the thermostat); and, where disks come
     to rest (``rest`` not ``None``), the state of :class:`RestingRules`, whose rules
@@ -51,8 +53,10 @@ class CollisionRules(RestingRules, RoughRules):
     gravity: tuple[float, float]
     wall_kt: dict[int, float]
     time: float
+    motions: dict
     dissipated: float
     wall_heat: list[float]
+    wall_work: list[float]
     collisions: int
     wall_collisions: int
     virial_xx: float
@@ -238,7 +242,11 @@ class CollisionRules(RestingRules, RoughRules):
                 self._slide(i, partner)
                 self._settle(i)
             return
-        part, a, b = detail
+        # A moving segment's detail also holds its velocity uw at the contact (its end
+        # points are those at the contact): the velocity relative to it, v - uw, is
+        # reflected.  A fixed segment is uw = 0, and v - 0.0 is v to the last bit.
+        part, a, b = detail[0], detail[1], detail[2]
+        uw = detail[3] if len(detail) > 3 else (0.0, 0.0)
         if part == "side":
             u = (b[0] - a[0], b[1] - a[1])
             n = (-u[1], u[0])
@@ -247,7 +255,7 @@ class CollisionRules(RestingRules, RoughRules):
             n = (p[0] - end[0], p[1] - end[1])
         norm = math.sqrt(_dot(n, n))
         n = (n[0] / norm, n[1] / norm)
-        vn = _dot(v, n)
+        vn = _dot((v[0] - uw[0], v[1] - uw[1]), n)
         if self.growth is not None:
             # (n points to the disk's side for an end point; for a side, the sign
             # of n drops out of vn n, but not of the growth term.)
@@ -263,6 +271,12 @@ class CollisionRules(RestingRules, RoughRules):
         self.v[i] = [v[0] - k * vn * n[0], v[1] - k * vn * n[1]]
         self._release(i)
         self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
+        if len(detail) > 3:
+            # The work of the impulse J = -(1+e) m vn n on the disk, J.uw: the kinetic
+            # energy it gained beyond the loss, since v'^2 - v^2 = (v'-uw)^2 - (v-uw)^2
+            # + 2 (v' - v).uw.
+            self.wall_work[partner] += -k * self.m[i] * vn * _dot(n, uw)
+            self._part(i, partner, part, p, a, n, uw)
         if self.rough:
             # (The normal from the segment to the disk's centre, for the tangent.)
             if _dot(n, (p[0] - (a if part != "end" else b)[0],
@@ -274,6 +288,26 @@ class CollisionRules(RestingRules, RoughRules):
         if self.rest is not None:
             self._lift_segment(i, part, a, b)
             self._settle(i)
+
+    def _part(self, i, partner, part, p, a, n, uw):
+        """After a contact with an oscillating segment, disk ``i`` leaves it at the
+        parting speed at least, ``sqrt(2 (A omega^2 + |g|) tol)`` with ``tol = 2^-40 (r
+        + A)`` (slower, the segment could catch it again before the gap opens beyond
+        rounding, without end); the segment does that work too."""
+        motion = self.motions.get(partner)
+        if not isinstance(motion, Oscillation):
+            return
+        if part == "side" and _dot(n, (p[0] - a[0], p[1] - a[1])) < 0.0:
+            n = (-n[0], -n[1])  # (towards the disk)
+        g = math.hypot(*self.gravity) if self.m[i] != math.inf else 0.0
+        tol = 2.0**-40 * (self.r[i] + motion.amplitude)
+        least = math.sqrt(2.0 * (motion.amplitude * motion.omega**2 + g) * tol)
+        v = self.v[i]
+        away = _dot((v[0] - uw[0], v[1] - uw[1]), n)
+        if away < least:
+            w = [v[0] + (least - away) * n[0], v[1] + (least - away) * n[1]]
+            self.wall_work[partner] += 0.5 * self.m[i] * (_dot(w, w) - _dot(v, v))
+            self.v[i] = w
 
     def _heat(self, i, wall, n):
         """Disk ``i`` leaves heated ``wall`` (normal ``n`` into the box)."""

@@ -3,7 +3,9 @@
 Given the disks' state, these functions try every candidate contact with the oracles of
 ``_times`` and return the earliest, in straight flight (:func:`next_event`) and
 under gravity (:func:`next_event_accelerated`, which examines the candidates in order of
-a lower bound on their contact time and stops once no later one can come first).
+a lower bound on their contact time and stops once no later one can come first).  Both
+leave out the segments that move (``skip``), which :func:`next_moving_wall_event` then
+tries against the earliest of the others.
 """
 
 from __future__ import annotations
@@ -11,15 +13,19 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from ..geometry import Translation
 from ._times import (
     INF,
     _dot,
+    _shift,
     box_contact_time_accelerated,
     circle_contact_time,
     circle_contact_time_accelerated,
     circle_contact_time_growing,
+    oscillating_segment_contact_time,
     segment_contact_time,
     segment_contact_time_accelerated,
+    translating_segment_contact_time,
 )
 
 # An event found: its time, its kind ("disk", "wall", "box"; None if there is none), the
@@ -47,7 +53,8 @@ def _earliest(gap, speed, acceleration, scale):
     return 2.0 * gap / root if root > 0.0 else INF
 
 
-def next_event(positions, velocities, radii, growth_speeds, walls, box, shifts):
+def next_event(positions, velocities, radii, growth_speeds, walls, box, shifts,
+               skip=frozenset()):
     """The earliest contact in straight flight, as ``ReferenceSimulation.next_event``.
 
     ``growth_speeds`` are the speeds at which the radii grow, or ``None`` without
@@ -55,7 +62,8 @@ def next_event(positions, velocities, radii, growth_speeds, walls, box, shifts):
     ``(dx, dy)``, the image's position less its disk's, or under shear (no walls)
     ``(dx, dy, du)``, the image also moving at ``du`` more along x.  A pair's
     contact through an image comes from their relative position ``p_i - (p_j + shift)``
-    and velocity ``v_i - (v_j + (du, 0))``; its detail is the shift.
+    and velocity ``v_i - (v_j + (du, 0))``; its detail is the shift.  The segments whose
+    indices are in ``skip`` (those that move) are left out.
     """
     best: Event = (INF, None, -1, -1, None)
     n = len(positions)
@@ -77,6 +85,8 @@ def next_event(positions, velocities, radii, growth_speeds, walls, box, shifts):
                 if t < best[0]:
                     best = (t, "disk", i, j, shift)
         for k, wall in enumerate(walls):
+            if k in skip:
+                continue
             for sx, sy in shifts:
                 a = (wall.start[0] + sx, wall.start[1] + sy)
                 b = (wall.end[0] + sx, wall.end[1] + sy)
@@ -111,8 +121,10 @@ def next_event(positions, velocities, radii, growth_speeds, walls, box, shifts):
     return best
 
 
-def next_event_accelerated(positions, velocities, radii, acc, walls, box, shifts):
-    """:func:`next_event` under gravity, ``acc`` each disk's acceleration.
+def next_event_accelerated(positions, velocities, radii, acc, walls, box, shifts,
+                           skip=frozenset()):
+    """:func:`next_event` under gravity, ``acc`` each disk's acceleration; the segments
+    in ``skip`` left out.
 
     Two movable disks (or two immovable ones) have no relative acceleration: the
     quadratic of straight flight.  A movable disk against an immovable one, a wall
@@ -143,6 +155,8 @@ def next_event_accelerated(positions, velocities, radii, acc, walls, box, shifts
                 candidates.append((_earliest(gap, math.hypot(*dv), math.hypot(*da), d),
                                    len(candidates), "disk", i, j, (sx, sy, dp, dv, da)))
         for k, wall in enumerate(walls):
+            if k in skip:
+                continue
             for sx, sy in shifts:
                 a = (wall.start[0] + sx, wall.start[1] + sy)
                 b = (wall.end[0] + sx, wall.end[1] + sy)
@@ -183,4 +197,51 @@ def next_event_accelerated(positions, velocities, radii, acc, walls, box, shifts
             event = (t, "box", i, 2 * axis + int(bool(upper)), None)
         if (t, order) < best_key:
             best, best_key = event, (t, order)
+    return best
+
+
+def next_moving_wall_event(best, positions, velocities, radii, acc, walls, motions, time,
+                           shifts, horizon):
+    """The earliest of ``best`` and the contacts with the segments that move.
+
+    ``best`` is the earliest event among the other bodies (:func:`next_event` or
+    :func:`next_event_accelerated` with the moving segments skipped); ``motions`` maps a
+    segment's index to its :class:`~edmd2d.Translation` or :class:`~edmd2d.Oscillation`,
+    ``time`` is the clock and ``acc`` each disk's acceleration.  Segment ``k`` is
+    given by ``walls[k]``, where it is when its shift is zero; in each periodic image
+    ``(sx, sy)`` its end points move with it.
+
+    A translation's contact time is exact whatever its time
+    (:func:`translating_segment_contact_time`).  Against an oscillation
+    (:func:`oscillating_segment_contact_time`) the search ends at the earliest event
+    found so far, or at ``horizon`` (the look-ahead window of a periodic box) if that
+    is sooner: no later contact can come first.  A disk that does not move (no velocity
+    and no acceleration) meets the segment within one period or never, which bounds
+    its search too.  A moving segment's contact must come strictly before ``best`` to
+    replace it.  Its detail is ``(part, a, b, u)``: the part hit, the segment's end
+    points in that image at the contact and its velocity there.
+    """
+    for i, (p, v, r, g) in enumerate(zip(positions, velocities, radii, acc)):
+        still = v[0] == v[1] == g[0] == g[1] == 0.0
+        for k, motion in motions.items():
+            wall = walls[k]
+            for sx, sy in shifts:
+                a = (wall.start[0] + sx, wall.start[1] + sy)
+                b = (wall.end[0] + sx, wall.end[1] + sy)
+                if isinstance(motion, Translation):
+                    t, part, u = translating_segment_contact_time(p, v, g, r, a, b, motion,
+                                                                  time)
+                else:
+                    limit = min(best[0], horizon)
+                    if still:
+                        limit = min(limit, motion.period)
+                    if not limit < INF:
+                        raise RuntimeError(f"no end to the search of disk {i} against "
+                                           f"oscillating segment {k}")
+                    t, part, u = oscillating_segment_contact_time(p, v, g, r, a, b, motion,
+                                                                  time, limit)
+                if t < best[0]:
+                    s = _shift(motion, time + t)
+                    best = (t, "wall", i, k, (part, (a[0] + s[0], a[1] + s[1]),
+                                              (b[0] + s[0], b[1] + s[1]), u))
     return best

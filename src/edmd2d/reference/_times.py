@@ -2,9 +2,11 @@
 
 Pure functions of positions, velocities, accelerations and sizes, one for each kind of
 contact: two disks (straight flight, growing radii, or one of them accelerated), a disk
-and a wall segment (its side or an end point), a disk and the box walls of one axis.
-Under acceleration the contact functions are polynomials of degree up to four, whose
-first crossing of zero :func:`_crossings` finds from the signs of the geometry.
+and a wall segment (its side or an end point), fixed or moving, a disk and the box walls
+of one axis.  Under acceleration the contact functions are polynomials of degree up to
+four, whose first crossing of zero :func:`_crossings` finds from the signs of the
+geometry.  A translating segment is fixed in its own frame, phase by phase; against an
+oscillating one, conservative advancement finds the first root of the gap.
 """
 
 from __future__ import annotations
@@ -382,3 +384,210 @@ def box_contact_time_accelerated(x, v, g, r, length):
     if lower == upper == INF:
         return INF, None
     return (lower, False) if lower <= upper else (upper, True)
+
+
+# -- wall segments that move (see ReferenceSimulation's ``wall_motions``) ----------------
+#
+# A moving segment keeps its orientation: at clock t its end points are a + S(t) and
+# b + S(t), S the motion's ``shift``.  The oracles below take the end points as given
+# (S = 0) and the clock ``t0`` of the disk's state; they return (t, part, u): the time
+# from t0, the part hit and the segment's velocity at the contact.
+
+#: The most steps :func:`oscillating_segment_contact_time` takes before it gives up.
+MAX_ADVANCES = 100_000
+
+
+def _shift(motion, t):
+    """The motion's displacement at clock ``t``, a pair of floats."""
+    s = motion.shift(t)
+    return (float(s[0]), float(s[1]))
+
+
+def _wall_velocity(motion, t):
+    """The motion's velocity at clock ``t``, a pair of floats."""
+    u = motion.velocity_at(t)
+    return (float(u[0]), float(u[1]))
+
+
+def translating_segment_contact_time(p, v, g, r, a, b, motion, t0):
+    """Earliest contact of a disk (p, v, r) accelerated by ``g`` with the segment a-b
+    that ``motion``, a :class:`~edmd2d.Translation` with its ``begin`` set, carries.
+
+    The segment rests until ``begin``, moves at ``u = motion.velocity`` until ``end``,
+    and rests from then on: up to three phases from ``t0``.  Within a phase the segment's
+    velocity ``u`` is constant, so in its frame the disk starts where it is at the
+    phase's start ``ts`` (its position ``p + v (ts - t0) + g (ts - t0)^2 / 2``), with
+    velocity ``v + g (ts - t0) - u`` and acceleration ``g``, against the segment fixed
+    where it is at ``ts``: the oracles of fixed segments (:func:`segment_contact_time`,
+    :func:`segment_contact_time_accelerated`) give the contact.  The first contact that
+    lies inside its phase wins.
+
+    Returns
+    -------
+    tuple
+        ``(t, part, u)``: the time from ``t0``, the part ("side", "start", "end") and
+        the segment's velocity in that phase; ``(inf, None, None)`` if none.
+    """
+    begin, end = motion.begin, motion.end
+    starts = [t0, *(t for t in (begin, end) if t > t0)]
+    for k, ts in enumerate(starts):
+        te = starts[k + 1] if k + 1 < len(starts) else INF
+        u = motion.velocity if begin <= ts < end else (0.0, 0.0)
+        tau = ts - t0
+        x = _at(p, v, g, tau)
+        w = (v[0] + tau * g[0] - u[0], v[1] + tau * g[1] - u[1])
+        s = _shift(motion, ts)
+        a_s, b_s = (a[0] + s[0], a[1] + s[1]), (b[0] + s[0], b[1] + s[1])
+        if g[0] == 0.0 and g[1] == 0.0:
+            t, part = segment_contact_time(x, w, r, a_s, b_s)
+        else:
+            t, part = segment_contact_time_accelerated(x, w, g, r, a_s, b_s)
+        if t < te - ts:
+            return tau + t, part, (float(u[0]), float(u[1]))
+    return INF, None, None
+
+
+def oscillating_segment_contact_time(p, v, g, r, a, b, motion, t0, limit):
+    """Earliest contact within ``limit`` of a disk (p, v, r) accelerated by ``g`` with
+    the segment a-b that ``motion``, an :class:`~edmd2d.Oscillation`, shakes.
+
+    The relative motion is not a polynomial, so the first root of the gap
+    ``G(t) = dist(x(t), segment(t)) - r`` (``x(t) = p + v t + g t^2/2``, the segment
+    at clock ``t0 + t``) is found by *conservative advancement*: from a time at which
+    ``G > 0`` a step that provably cannot pass a root, repeated.  Two bounds give the
+    step ``h``, the larger of the two:
+
+    * first order: ``|G'| <= V``, a bound on the relative speed ``|v + g t - u(t)| <=
+      |v + g t| + |g| h + A omega`` over the step, so ``G`` stays positive for
+      ``h < G / V``;
+    * second order: while the disk does not overlap the segment, its distance ``D`` to it
+      is at least ``r``, and the gradient of the distance to a segment (a convex set)
+      turns at most at ``|X'| / D``: ``G'`` is Lipschitz with ``M = V^2 / r + |g| + A
+      omega^2`` (``A omega^2`` bounds the segment's acceleration), so ``G(t + h) >= G +
+      G' h - M h^2 / 2``, positive up to the smaller positive root of the right side.
+
+    The second bound keeps the steps long where the first stalls: next to a segment the
+    disk just bounced off (``G = 0``, opening) and at a near miss.  The bounds hold over
+    a window that the step never leaves; the window is the rest of ``[0, limit]``, or
+    twice the step if that was less than half of it (its bounds are then smaller).
+
+    Towards a simple root the steps close in on it from the safe side, like Newton's
+    method.  Once the computed gap is ``<= 0`` while closing (``G' < 0``), the contact
+    lies between the last time at which ``G > 0`` and the time reached, and bisection on
+    the sign of ``G`` finds the first float at which ``G <= 0``: the contact, if the gap
+    closes there (``G' < 0``, as every contact returned); touching and closing at the
+    start, it is now.  Where the computed gap is within its rounding error ``eps_G`` of
+    zero, or below, but not closing (``G' >= 0``), the disk touches without closing:
+    no contact, and the advance goes on as from a gap ``eps_G``.
+
+    Accuracy: a contact's time is the first float at which the computed gap is ``<= 0``
+    after one at which it is positive: the full double precision that the gap's own
+    rounding allows (an error of about ``eps_G / |G'|``).  No contact within ``limit``
+    is missed but a tangential touch whose gap dips below zero by at most ``2 eps_G``,
+    rounding, at a closing speed that vanishes with it.  More than
+    :data:`MAX_ADVANCES` steps (a graze that converges too slowly) raise
+    :class:`RuntimeError`, never a wrong answer.
+
+    Parameters
+    ----------
+    p, v, g : pair of float
+        The disk's position, velocity and acceleration at clock ``t0``.
+    r : float
+        Its radius.
+    a, b : pair of float
+        The segment's end points as given (unshifted).
+    motion : Oscillation
+        The segment's motion, on the simulation's clock.
+    t0 : float
+        The clock now.
+    limit : float
+        The search's end, a finite time from ``t0``.
+
+    Returns
+    -------
+    tuple
+        ``(t, part, u)``: the time from ``t0``, the part ("side", "start", "end") and
+        the segment's velocity there; ``(inf, None, None)`` if none within ``limit``.
+    """
+    if not limit < INF:
+        raise ValueError("the search for an oscillating segment needs a finite limit")
+    wall_speed = motion.amplitude * motion.omega  # |u| <= A omega
+    wall_acc = wall_speed * motion.omega  # |u'| <= A omega^2
+    gabs = math.hypot(*g)
+    ab = (b[0] - a[0], b[1] - a[1])
+    ll = _dot(ab, ab)
+    scale = _sum_abs(p, a, b) + motion.amplitude + r
+
+    def probe(tau):
+        """(G, G', part) at ``tau``: the gap, its rate and the part nearest the centre."""
+        t = t0 + tau
+        s = _shift(motion, t)
+        x = _at(p, v, g, tau)
+        rel = (x[0] - a[0] - s[0], x[1] - a[1] - s[1])
+        q = _dot(rel, ab) / ll
+        if q <= 0.0:
+            q, part = 0.0, "start"
+        elif q >= 1.0:
+            q, part = 1.0, "end"
+        else:
+            part = "side"
+        d = (rel[0] - q * ab[0], rel[1] - q * ab[1])  # from the nearest point to x
+        dist = math.hypot(*d)
+        u = _wall_velocity(motion, t)
+        w = (v[0] + tau * g[0] - u[0], v[1] + tau * g[1] - u[1])
+        rate = _dot(d, w) / dist if dist > 0.0 else -INF
+        return dist - r, rate, part
+
+    def noise(tau):
+        # The gap is a difference of coordinates of size ~ these terms, rounded.
+        return 16.0 * EPS * (scale + tau * _sum_abs(v) + 0.5 * tau * tau * _sum_abs(g))
+
+    def step(gap, rate, tau, span):
+        # The bounds of the docstring over [tau, tau + span]; the step, at most span.
+        speed = math.hypot(v[0] + tau * g[0], v[1] + tau * g[1]) + gabs * span + wall_speed
+        m = speed * speed / r + gabs + wall_acc
+        q = math.sqrt(rate * rate + 2.0 * m * gap)
+        # The positive root of gap + rate h - m h^2 / 2, cancellation-free for both signs.
+        second = (rate + q) / m if rate >= 0.0 else 2.0 * gap / (q - rate)
+        return min(max(gap / speed, second), span)
+
+    tau = 0.0
+    clear = None  # the last time at which G > 0 (the steps since then are safe)
+    for _ in range(MAX_ADVANCES):
+        if tau > limit:
+            return INF, None, None
+        gap, rate, part = probe(tau)
+        if gap <= 0.0 and rate < 0.0:
+            if clear is not None:
+                # The crossing is in (clear, tau]: bisect to the first float with G <= 0.
+                lo, hi = clear, tau
+                while True:
+                    mid = lo + 0.5 * (hi - lo)
+                    if not lo < mid < hi:
+                        break
+                    if probe(mid)[0] > 0.0:
+                        lo = mid
+                    else:
+                        hi = mid
+                tau = hi
+                gap, rate, part = probe(tau)
+            if rate < 0.0:
+                if tau > limit:
+                    return INF, None, None
+                return tau, part, _wall_velocity(motion, t0 + tau)
+        eps = noise(tau)
+        if gap > 0.0:
+            clear = tau
+        else:
+            clear = None  # (touching by rounding: no crossing from G > 0 before here)
+        if gap <= eps and rate >= 0.0:
+            gap = eps  # touching without closing: go on as from the rounding error
+        h = step(gap, rate, tau, limit - tau)
+        span = limit - tau
+        if h < 0.5 * span:
+            h = step(gap, rate, tau, 2.0 * h)  # the bounds over the shorter window
+        after = tau + h
+        tau = after if after > tau else math.nextafter(tau, INF)
+    raise RuntimeError(
+        f"no convergence in {MAX_ADVANCES} steps towards a contact of a disk at {tuple(p)} "
+        f"with an oscillating segment {a}-{b} from t={t0}: a graze too close to call")

@@ -128,7 +128,8 @@ def test_the_registry_refuses_a_taken_name_or_keyword(label):
 
 def test_the_built_in_families_and_their_keywords():
     assert list(physics.FAMILIES) == ["restitution", "gravity", "heated_walls",
-                                      "thermostat", "growth", "resting", "shear", "rough"]
+                                      "thermostat", "growth", "resting", "shear", "rough",
+                                      "moving_walls"]
     assert [kw for kw in physics.KEYWORDS] == ["restitution", "wall_restitution", "tc",
                                                "gravity", "wall_temperatures",
                                                "thermostat", "growth", "resting",
@@ -136,10 +137,12 @@ def test_the_built_in_families_and_their_keywords():
                                                "tangential_restitution", "friction",
                                                "wall_tangential_restitution",
                                                "wall_friction", "inertia",
-                                               "angular_velocities", "angles"]
+                                               "angular_velocities", "angles",
+                                               "wall_motions"]
     assert not physics.Resting.built_in  # (a family of the registry, checked always)
     assert physics.Resting.always
     for name in ("restitution", "wall_restitution", "tc", "gravity", "thermostat",
                  "resting", "rest_height", "shear_rate", "tangential_restitution"):
         assert name in config._schema._model_schema()
     assert "growth" not in config._schema._model_schema()  # (compression is not a config run)
+    assert "wall_motions" not in config._schema._model_schema()  # (from [[walls]] tables)

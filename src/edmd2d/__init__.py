@@ -24,7 +24,7 @@ from .analysis import (
 from .builders import lattice_packing_limit, make_gas, random_gas, random_packing
 from .compress import Compression, compress, packing_fraction
 from .contacts import ContactNetwork, contact_network, contact_tolerance
-from .geometry import Box, Wall
+from .geometry import Box, Oscillation, Translation, Wall
 from .measurements import (
     Cooling,
     Measurement,
@@ -36,7 +36,8 @@ from .measurements import (
 from .simulation import Counts, Simulation
 
 __all__ = [
-    "Box", "Wall", "Simulation", "Counts", "make_gas", "lattice_packing_limit",
+    "Box", "Wall", "Translation", "Oscillation", "Simulation", "Counts", "make_gas",
+    "lattice_packing_limit",
     "measure", "Measurement", "kinetic_temperature", "rotational_temperature", "cooling",
     "Cooling", "models",
     "radial_distribution", "speed_distribution", "maxwell_boltzmann_test",

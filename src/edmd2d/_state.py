@@ -32,7 +32,7 @@ from ._engine import sheared as _sheared
 from ._engine import wide as _wide
 from ._sums import dot
 from ._validate import about, as_generator, indices_where
-from .geometry import BOX_WALL_EQUATIONS, MAX_LENGTH
+from .geometry import BOX_WALL_EQUATIONS, MAX_LENGTH, Wall
 
 __all__ = ["EngineState", "build_model", "EVENT_KINDS", "EVENT_DTYPE", "VERSION"]
 
@@ -234,6 +234,7 @@ class EngineState:
             self.rough_t = np.full(n, float(time))
             inertia = rough.inertia * np.where(movable, mass, 1.0) * rad * rad
             self.rough_inv_inertia = np.where(movable, 1.0 / inertia, 0.0)
+        self.check_motions(families, growth)
         self.rest_check = self.first_rest_check()
         self.counts = np.zeros(_layout.N_COUNTS, np.int64)
         self.acc = np.zeros(_layout.N_ACC, np.float64)
@@ -309,6 +310,10 @@ class EngineState:
         for name in ("rough_w", "rough_angle", "rough_t", "rough_inv_inertia"):
             state.setdefault(name, None)  # (saved before disks could spin)
         state["log_capacity"] = 0  # (a copy does not stream)
+        wacc = state["wacc"]
+        if wacc.shape[1] < _layout.N_WACC:  # (saved before segments could move)
+            state["wacc"] = np.concatenate(
+                [wacc, np.zeros((len(wacc), _layout.N_WACC - wacc.shape[1]))], axis=1)
         acc = state["acc"]
         if len(acc) < _layout.N_ACC:  # (saved before gravity could be changed)
             state["acc"] = np.concatenate([acc, np.zeros(_layout.N_ACC - len(acc))])
@@ -370,15 +375,23 @@ class EngineState:
                           self.nxt, self.prv)
         reach = 0.5 * dmax + _CELL_MARGIN * (side + dmax)
         closed = np.flatnonzero(~self.wall_open)
+        # (A moving segment is listed along its whole path: from one extreme, swept
+        # to the other.)
+        wa, wb, sweep = self.wa, self.wb, None
+        moving = self.families.get("moving_walls")
+        if moving is not None:
+            low, high = moving.extremes()
+            wa, wb, sweep = wa + low, wb + low, high - low
         if len(closed) == len(self.wa):
             self.wstart, self.wwall, self.wsx, self.wsy = _grid.bucket_walls(
-                self.wa, self.wb, self.gi, self.gf, reach)
+                wa, wb, self.gi, self.gf, reach, sweep)
         else:
             # The closed segments alone, listed under their own indices (with every
             # segment open, still one empty list per cell: the engine looks them up
             # wherever there are segments).
-            start, wall, sx, sy = _grid.bucket_walls(self.wa[closed], self.wb[closed],
-                                                     self.gi, self.gf, reach)
+            start, wall, sx, sy = _grid.bucket_walls(
+                wa[closed], wb[closed], self.gi, self.gf, reach,
+                None if sweep is None else sweep[closed])
             if len(closed) == 0:
                 start = np.zeros(ncx * ncy + 1, np.int32)
             self.wstart, self.wwall, self.wsx, self.wsy = start, closed[wall], sx, sy
@@ -395,7 +408,7 @@ class EngineState:
         (:mod:`._engine.wide`); ``None`` for the uniform grid (a ``cell_size`` given,
         shear, disks at rest, or radii too alike for it to pay)."""
         if (self.grid_mode == "uniform" or cell_size is not None or self.shear is not None
-                or "resting" in self.families):
+                or "resting" in self.families or "moving_walls" in self.families):
             return None
         box = self.box
         narrow = _wide.choose(radii, box.width, box.height, box.periodic, _CELL_MARGIN,
@@ -449,8 +462,9 @@ class EngineState:
             )
         if not self.walls:
             return
+        wa, wb = self.wall_ends()
         i, w, dist = _overlap.first_wall_overlap(
-            pos, rad, self.gf, self.E[:, _layout.CELL], self.wa, self.wb,
+            pos, rad, self.gf, self.E[:, _layout.CELL], wa, wb,
             self.wstart, self.wwall, self.wsx, self.wsy, OVERLAP_TOL,
         )
         if i < 0 and self.wide is not None:
@@ -554,9 +568,53 @@ class EngineState:
         _layout.support_view(self.S)[:] = rest[self.order]
         self.predict_all()  # every event and kept candidate is recomputed
 
+    # ------------------------------------------------------------------ moving walls
+    def check_motions(self, families: dict, growth) -> None:
+        """Refuse what moving wall segments do not combine with (yet)."""
+        moving = families.get("moving_walls")
+        if moving is None:
+            return
+        with about("wall_motions"):
+            others = {"growth": growth, "shear": families.get("shear"),
+                      "rough disks": families.get("rough")}
+            for name, other in others.items():
+                if other is not None:
+                    raise ValueError(f"moving wall segments do not combine with {name}")
+            if "resting" in families:
+                raise ValueError("moving wall segments do not hold disks at rest (yet): "
+                                 "under gravity with an inelastic model, give "
+                                 "resting=False")
+            if self.grid_mode == "wide":
+                raise ValueError("moving wall segments keep the uniform grid: give "
+                                 "grid='auto' or 'uniform'")
+            if self.model is not None:
+                hot = np.flatnonzero((self.model.wall_kt[4:] > 0.0)
+                                     & (moving.kind != _layout.FIXED))
+                if len(hot):
+                    raise ValueError(f"walls[{int(hot[0])}] both moves and is heated: a "
+                                     f"moving segment cannot be heated")
+
+    def motion_bundle(self):
+        """The engine's family of moving wall segments: ``None`` or a ``layout.Motion``."""
+        moving = self.families.get("moving_walls")
+        return None if moving is None else _layout.Motion(moving.kind, moving.par)
+
+    def wall_ends(self, t: float | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """The wall segments' start and end points at time ``t`` (default now), each of
+        shape (S, 2): where they were given, shifted by their motions."""
+        moving = self.families.get("moving_walls")
+        if moving is None:
+            return self.wa, self.wb
+        shift = moving.shifts(self.time if t is None else t)
+        return self.wa + shift, self.wb + shift
+
     def closed_walls(self) -> tuple:
-        """The wall segments that are not open (the bodies a disk can meet)."""
-        return tuple(w for w, is_open in zip(self.walls, self.wall_open) if not is_open)
+        """The wall segments that are not open (the bodies a disk can meet), where they
+        are now."""
+        walls = self.walls
+        if "moving_walls" in self.families:
+            walls = tuple(Wall(a, b) for a, b in zip(*self.wall_ends()))
+        return tuple(w for w, is_open in zip(walls, self.wall_open) if not is_open)
 
     def set_wall_open(self, k: int, is_open: bool) -> None:
         """Open wall segment ``k`` (no disk meets it any more; every disk at rest
@@ -771,7 +829,7 @@ class EngineState:
             families.contact, families.heated, families.thermostat, families.uniforms,
             self.gravity_bundle(), self.growth_bundle(), rest, self.shear_bundle(),
             None if self.helfand_sums is None else _layout.Helfand(self.helfand_sums),
-            self.rough_bundle(), self.wide,
+            self.rough_bundle(), self.wide, self.motion_bundle(),
         )
 
     def rough_bundle(self):

@@ -22,7 +22,7 @@ Examples
 >>> from edmd2d import physics
 >>> list(physics.FAMILIES)  # doctest: +NORMALIZE_WHITESPACE
 ['restitution', 'gravity', 'heated_walls', 'thermostat', 'growth', 'resting', 'shear',
- 'rough']
+ 'rough', 'moving_walls']
 >>> physics.Thermostat.check(thermostat=(1.0, 0.5))
 Thermostat(temperature=1.0, rate=0.5)
 >>> physics.Gravity.check(gravity=(0.0, 0.0)) is None   # (no gravity: straight flights)
@@ -43,13 +43,14 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import models as _models
-from ._validate import about, as_float_array, per_disk
-from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, Box
+from ._engine import layout as _layout
+from ._validate import about, as_count, as_float_array, per_disk
+from .geometry import BOX_WALL_EQUATIONS, BOX_WALLS, Box, Oscillation, Translation
 
 __all__ = ["Keyword", "System", "Family", "FAMILIES", "KEYWORDS", "register", "unregister",
            "owner", "about",
            "Restitution", "Gravity", "HeatedWalls", "Thermostat", "Growth", "Resting",
-           "Shear", "Rough"]
+           "Shear", "Rough", "MovingWalls"]
 
 
 @dataclass(frozen=True)
@@ -100,6 +101,8 @@ class System:
         the built-in ones (the registered families).
     inelastic : bool
         Whether some coefficient of restitution is below 1 (as ``gravity``).
+    walls : tuple of Wall
+        The wall segments.
     """
 
     box: Box
@@ -111,6 +114,7 @@ class System:
     time: float
     gravity: np.ndarray | None = None
     inelastic: bool = False
+    walls: tuple = ()
 
 
 class Family:
@@ -1132,8 +1136,186 @@ class Rough(Family):
                 "inertia": np.asarray(self.inertia, np.float64)}
 
 
+@dataclass(frozen=True, eq=False)
+class MovingWalls(Family):
+    """Wall segments that move: ``wall_motions = {segment: motion}``, each motion a
+    :class:`~edmd2d.Translation` (a piston: a constant velocity over a distance) or an
+    :class:`~edmd2d.Oscillation` (a shaken floor: ``A sin(omega t + phase)`` along a
+    direction).  A segment keeps its orientation; its path must stay inside the box.
+    A disk meets a moving segment at the exact time (a translation is a fixed segment
+    seen from a moving frame; an oscillation is found by a bracketed search that misses
+    no contact deeper than ``2^-40`` of the disk's radius plus the amplitude), and
+    leaves it with its normal velocity *relative to the segment* reversed (times the
+    wall restitution).  The work the segments do on the disks is tallied
+    (:meth:`Simulation.wall_work <edmd2d.Simulation.wall_work>`), so that kinetic and
+    potential energy, less the work, plus what is dissipated, stay constant to
+    rounding.
+
+    A moving segment cannot be heated; moving walls do not combine with growth,
+    shear, rough disks or disks that come to rest (yet: an inelastic gas under gravity
+    needs ``resting=False``), and they keep the uniform grid.
+
+    Attributes
+    ----------
+    kind : ndarray of int64, shape (S,)
+        Per segment: 0 fixed, 1 a translation, 2 an oscillation.
+    par : ndarray, shape (S, 5)
+        Per segment: the unit direction, then the speed, the start and the stop time
+        of a translation, or the amplitude, the angular frequency and the phase of an
+        oscillation.
+    """
+
+    name: ClassVar[str] = "moving_walls"
+    keywords: ClassVar[tuple[Keyword, ...]] = (
+        Keyword("wall_motions", None, "",
+                "{segment: Translation or Oscillation}: wall segments that move"),
+    )
+
+    kind: np.ndarray
+    par: np.ndarray
+
+    @classmethod
+    def check(  # type: ignore[override]  # (its own keywords, as Family.check says)
+            cls, system: System | None = None, *,
+            wall_motions: Any = None) -> MovingWalls | None:
+        """``None`` (every segment fixed) or the segments' motions.
+
+        Parameters
+        ----------
+        system : System
+            Its box, wall segments and start time.
+        wall_motions : dict of int to Translation or Oscillation
+
+        Returns
+        -------
+        MovingWalls or None
+
+        Raises
+        ------
+        TypeError, ValueError
+            For a value that is not such a mapping, an index that names no segment,
+            or a path that leaves the box.
+        """
+        assert system is not None  # (checked with the system, which it needs)
+        if wall_motions is None:
+            return None
+        with about("wall_motions"):
+            if not isinstance(wall_motions, dict):
+                raise TypeError(f"wall_motions must be a dict {{segment index: Translation "
+                                f"or Oscillation}}, got {type(wall_motions).__name__}")
+            n = len(system.walls)
+            kind = np.zeros(n, np.int64)
+            par = np.zeros((n, _layout.N_MOTION))
+            box = system.box
+            for key, motion in wall_motions.items():
+                k = as_count("wall_motions segment index", key)
+                if k >= n:
+                    raise ValueError(f"wall_motions names segment {k}, but there are "
+                                     f"{n} wall segments")
+                if not isinstance(motion, (Translation, Oscillation)):
+                    raise TypeError(f"wall_motions[{k}] must be a Translation or an "
+                                    f"Oscillation, got {motion!r}")
+                started = motion.starting(system.time)
+                wall = system.walls[k]
+                for shift in started.extremes():
+                    for end in (wall.start, wall.end):
+                        x, y = end[0] + shift[0], end[1] + shift[1]
+                        if not (0.0 <= x <= box.width and 0.0 <= y <= box.height):
+                            raise ValueError(
+                                f"wall_motions[{k}] takes walls[{k}] out of the box: its "
+                                f"end point reaches ({x:.6g}, {y:.6g}), outside [0, "
+                                f"{box.width:g}] x [0, {box.height:g}]")
+                if isinstance(started, Translation):
+                    assert started.begin is not None
+                    speed = started.speed
+                    kind[k] = _layout.LINEAR
+                    par[k] = (started.velocity[0] / speed, started.velocity[1] / speed,
+                              speed, started.begin, started.end)
+                else:
+                    kind[k] = _layout.SINE
+                    par[k] = (*started.direction, started.amplitude, started.omega,
+                              started.phase)
+        if not np.any(kind != _layout.FIXED):
+            return None
+        return cls(kind, par)
+
+    def motions(self) -> dict:
+        """The motions by segment index, as given (with their start times).
+
+        Returns
+        -------
+        dict of int to Translation or Oscillation
+        """
+        out: dict = {}
+        for k in np.flatnonzero(self.kind != _layout.FIXED):
+            p = self.par[k]
+            if self.kind[k] == _layout.LINEAR:
+                velocity = p[_layout.M_SPEED] * p[:2]
+                distance = p[_layout.M_SPEED] * (p[_layout.M_END] - p[_layout.M_BEGIN])
+                out[int(k)] = Translation(velocity, distance, p[_layout.M_BEGIN])
+            else:
+                out[int(k)] = Oscillation(p[_layout.M_AMPLITUDE], p[_layout.M_OMEGA],
+                                          p[:2], p[_layout.M_PHASE])
+        return out
+
+    def extremes(self) -> tuple[np.ndarray, np.ndarray]:
+        """The two ends of every segment's path as shifts from where it was given (zero
+        where fixed): it moves between them.
+
+        Returns
+        -------
+        tuple of two numpy.ndarray, shape (S, 2)
+        """
+        low = np.zeros((len(self.kind), 2))
+        high = np.zeros((len(self.kind), 2))
+        for k, motion in self.motions().items():
+            low[k], high[k] = motion.extremes()
+        return low, high
+
+    def shifts(self, t: float) -> np.ndarray:
+        """Every segment's displacement at time ``t`` (zero where fixed).
+
+        Parameters
+        ----------
+        t : float
+
+        Returns
+        -------
+        numpy.ndarray, shape (S, 2)
+        """
+        out = np.zeros((len(self.kind), 2))
+        for k, motion in self.motions().items():
+            out[k] = motion.shift(t)
+        return out
+
+    def log(self) -> dict:
+        """The motions' table (``kind`` and ``par``, as float64).
+
+        Returns
+        -------
+        dict of str to ndarray
+        """
+        return {"kind": self.kind.astype(np.float64), "par": self.par.ravel()}
+
+    @classmethod
+    def keywords_from_log(cls, log: dict) -> dict:
+        """``wall_motions`` rebuilt from what a GSD frame logged.
+
+        Parameters
+        ----------
+        log : dict of str to ndarray
+
+        Returns
+        -------
+        dict
+        """
+        kind = np.asarray(log["kind"]).astype(np.int64)
+        par = np.asarray(log["par"], np.float64).reshape(len(kind), _layout.N_MOTION)
+        return {"wall_motions": cls(kind, par).motions()}
+
+
 for _family in (Restitution, Gravity, HeatedWalls, Thermostat, Growth, Resting, Shear,
-                Rough):
+                Rough, MovingWalls):
     register(_family)
 
 

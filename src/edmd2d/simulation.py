@@ -262,7 +262,8 @@ class Simulation(SimulationBase):
                     raise ValueError(f"open_walls must name wall segments (0 to "
                                      f"{len(wall_list) - 1}), got {k}")
                 wall_open[k] = True
-        system = _physics.System(box, len(wall_list), rad, vel, mass, spec, float(t0))
+        system = _physics.System(box, len(wall_list), rad, vel, mass, spec, float(t0),
+                                 walls=tuple(wall_list))
         gravity_family = _physics.Gravity.check(system, gravity=gravity)
         g = None if gravity_family is None else gravity_family.g
         growth_family = _physics.Growth.check(system, growth=growth)
@@ -419,6 +420,14 @@ class Simulation(SimulationBase):
         return self._state.walls
 
     @property
+    def wall_positions(self) -> np.ndarray:
+        """Where the wall segments are at :attr:`time`, shape (S, 2, 2): each segment's
+        start and end point (moved by its motion, if it moves: see the keyword
+        ``wall_motions``)."""
+        wa, wb = self._state.wall_ends()
+        return np.stack([wa, wb], axis=1)
+
+    @property
     def open_walls(self) -> np.ndarray:
         """Which wall segments are open (:meth:`open_wall`), shape (S,), a read-only
         copy."""
@@ -522,6 +531,18 @@ class Simulation(SimulationBase):
         """
         return np.concatenate([self._state.acc[_layout.A_HEAT_BOX:_layout.A_HEAT_BOX + 4],
                                self._state.wacc[:, _layout.W_HEAT]])
+
+    def wall_work(self) -> np.ndarray:
+        """The work each wall segment has done on the disks since creation, shape (S,):
+        ``J.u`` summed over its contacts (``J`` the impulse it gave, ``u`` its velocity),
+        0 for a segment that never moved.  ``total_energy() + dissipated_energy()``
+        minus ``wall_work().sum()`` stays constant to rounding.
+
+        Returns
+        -------
+        numpy.ndarray, shape (S,)
+        """
+        return self._state.wacc[:, _layout.W_WORK].copy()
 
     def thermostat_energy(self) -> float:
         """Kinetic energy the thermostat's redraws gave to the disks since creation

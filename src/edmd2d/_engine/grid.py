@@ -97,8 +97,40 @@ def _segment_hits_rect(ax, ay, bx, by, x0, y0, x1, y1):
     return True
 
 
+@njit(inline="always")
+def _swept_hits_rect(ax, ay, bx, by, px, py, x0, y0, x1, y1):
+    """Does the parallelogram swept by the segment a->b shifted by up to ``p`` meet
+    the closed rectangle ``[x0,x1]x[y0,y1]``?  (Separating axes: x, y and the normals of
+    the two edge directions.)"""
+    for k in range(2):
+        ex = (bx - ax) if k == 0 else px
+        ey = (by - ay) if k == 0 else py
+        nx = -ey
+        ny = ex
+        if nx == 0.0 and ny == 0.0:
+            continue
+        lo = math.inf
+        hi = -math.inf
+        for c in range(4):
+            qx = (ax if c < 2 else bx) + (px if c % 2 == 1 else 0.0)
+            qy = (ay if c < 2 else by) + (py if c % 2 == 1 else 0.0)
+            v = qx * nx + qy * ny
+            lo = min(lo, v)
+            hi = max(hi, v)
+        rlo = math.inf
+        rhi = -math.inf
+        for c in range(4):
+            v = (x0 if c < 2 else x1) * nx + (y0 if c % 2 == 0 else y1) * ny
+            rlo = min(rlo, v)
+            rhi = max(rhi, v)
+        if hi < rlo or rhi < lo:
+            return False
+    # (The axes x and y: the caller's range of cells is the swept box's.)
+    return True
+
+
 @njit
-def _bucket_walls(wa, wb, gi, gf, reach, start, wall, sx, sy, fill):
+def _bucket_walls(wa, wb, sweep, gi, gf, reach, start, wall, sx, sy, fill):
     ncx = gi[0]
     ncy = gi[1]
     width = gf[0]
@@ -109,27 +141,35 @@ def _bucket_walls(wa, wb, gi, gf, reach, start, wall, sx, sy, fill):
     ry = 1 if gi[3] else 0
     count = 0
     for w in range(wa.shape[0]):
+        px = sweep[w, 0]
+        py = sweep[w, 1]
+        swept = px != 0.0 or py != 0.0
         for ix in range(-rx, rx + 1):
             for iy in range(-ry, ry + 1):
                 ax = wa[w, 0] + ix * width
                 ay = wa[w, 1] + iy * height
                 bx = wb[w, 0] + ix * width
                 by = wb[w, 1] + iy * height
-                cx0 = int(math.floor((min(ax, bx) - reach) / lx))
-                cx1 = int(math.floor((max(ax, bx) + reach) / lx))
-                cy0 = int(math.floor((min(ay, by) - reach) / ly))
-                cy1 = int(math.floor((max(ay, by) + reach) / ly))
+                cx0 = int(math.floor((min(ax, bx) + min(px, 0.0) - reach) / lx))
+                cx1 = int(math.floor((max(ax, bx) + max(px, 0.0) + reach) / lx))
+                cy0 = int(math.floor((min(ay, by) + min(py, 0.0) - reach) / ly))
+                cy1 = int(math.floor((max(ay, by) + max(py, 0.0) + reach) / ly))
                 cx0 = max(cx0, 0)
                 cy0 = max(cy0, 0)
                 cx1 = min(cx1, ncx - 1)
                 cy1 = min(cy1, ncy - 1)
                 for cy in range(cy0, cy1 + 1):
                     for cx in range(cx0, cx1 + 1):
-                        if _segment_hits_rect(
-                            ax, ay, bx, by,
-                            cx * lx - reach, cy * ly - reach,
-                            (cx + 1) * lx + reach, (cy + 1) * ly + reach,
-                        ):
+                        r0x = cx * lx - reach
+                        r0y = cy * ly - reach
+                        r1x = (cx + 1) * lx + reach
+                        r1y = (cy + 1) * ly + reach
+                        if swept:
+                            hit = _swept_hits_rect(ax, ay, bx, by, px, py, r0x, r0y, r1x,
+                                                   r1y)
+                        else:
+                            hit = _segment_hits_rect(ax, ay, bx, by, r0x, r0y, r1x, r1y)
+                        if hit:
                             c = cx + ncx * cy
                             if fill:
                                 k = start[c + 1]
@@ -143,24 +183,28 @@ def _bucket_walls(wa, wb, gi, gf, reach, start, wall, sx, sy, fill):
     return count
 
 
-def bucket_walls(wa, wb, gi, gf, reach):
+def bucket_walls(wa, wb, gi, gf, reach, sweep=None):
     """CSR lists of the walls (and their periodic images) near each cell.
 
     A disk whose centre is in cell ``c`` can only touch a wall entry listed in
     ``wall[start[c]:start[c+1]]``; entry ``k`` is wall ``wall[k]`` shifted by
     ``(sx[k] * width, sy[k] * height)``.  ``reach`` is the largest radius (plus a
     rounding margin): a wall is listed for every cell whose rectangle grown by ``reach``
-    it meets.  Without walls ``start`` is ``[0]``, not one entry per cell: callers must
-    not look up cells then.
+    it meets.  A segment that moves is given from one end of its path, ``sweep`` (shape
+    (S, 2), zero for a fixed one) the shift to the other: it is listed wherever the
+    parallelogram it sweeps comes that near.  Without walls ``start`` is ``[0]``, not
+    one entry per cell: callers must not look up cells then.
     """
     empty = np.zeros(0, dtype=np.int64)
     if wa.shape[0] == 0:
         # Nothing to bucket (and nothing to compile).  No per-cell array either (6 bytes
         # a disk at packing 0.5): every reader skips the lookup when there are no walls.
         return np.zeros(1, dtype=np.int32), empty, empty, empty
+    if sweep is None:
+        sweep = np.zeros((wa.shape[0], 2))
     ncell = int(gi[0] * gi[1])
     start = np.zeros(ncell + 1, dtype=np.int32)  # per cell: keep it small
-    _bucket_walls(wa, wb, gi, gf, reach, start, empty, empty, empty, False)
+    _bucket_walls(wa, wb, sweep, gi, gf, reach, start, empty, empty, empty, False)
     np.cumsum(start, out=start)
     total = int(start[-1])
     wall = np.empty(total, dtype=np.int64)
@@ -168,7 +212,7 @@ def bucket_walls(wa, wb, gi, gf, reach):
     sy = np.empty(total, dtype=np.int64)
     cursor = start.copy()
     cursor[1:] = start[:-1]
-    _bucket_walls(wa, wb, gi, gf, reach, cursor, wall, sx, sy, True)
+    _bucket_walls(wa, wb, sweep, gi, gf, reach, cursor, wall, sx, sy, True)
     return start, wall, sx, sy
 
 

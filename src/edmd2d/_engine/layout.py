@@ -27,7 +27,7 @@ declared at the end: the loop's own state (:class:`Control`, :class:`Particles`,
 :class:`Grid`, :class:`Walls`, :class:`Calendar`, :class:`Tallies`, :class:`Log`) and
 one per physics family (:class:`Contact`, :class:`HeatedWalls`, :class:`Thermostat`,
 :class:`Uniforms`, :class:`Gravity`, :class:`Growth`, :class:`Rest`,
-:class:`Shear`).  A family that a
+:class:`Shear`, :class:`Motion`).  A family that a
 system does not use is passed as ``None``: numba prunes its branches from the loop
 compiled for it.
 """
@@ -220,7 +220,8 @@ A_HEAT_BOX = 9  # 9..12
 A_THERMOSTAT = 13
 A_GRAVITY = 14  # potential energy given by changes of gravity (Python side only)
 A_VIRIAL_XY = 15
-N_ACC = 16
+A_WORK = 16  # the work of the moving wall segments on the disks (all segments)
+N_ACC = 17
 
 # Per-segment tallies (wacc[k, ...], one row per wall segment k, beside acc[A_SEGMENTS],
 # their total): the impulse vector the segment received, the sum of -J n over its
@@ -228,7 +229,8 @@ N_ACC = 16
 # J summed over the contacts on each side (left: the side that (-(by - ay), bx - ax)
 # points to, on the left going from start a to end b) and at the two end points; and
 # the number of contact events (counted like counts[C_WALL], impulse or not); and the
-# kinetic energy the segment gave to the disks (a heated segment).
+# kinetic energy the segment gave to the disks (a heated segment), and the work it did
+# on them (a moving segment: J.u over its contacts, u its velocity).
 W_FX = 0
 W_FY = 1
 W_LEFT = 2
@@ -236,7 +238,8 @@ W_RIGHT = 3
 W_ENDS = 4
 W_CONTACTS = 5
 W_HEAT = 6
-N_WACC = 7
+W_WORK = 7
+N_WACC = 8
 
 # Modes of run(): process events, or predict every disk afresh and rebuild the queue
 RUN_EVENTS = 0
@@ -582,6 +585,36 @@ class Wide(NamedTuple):
     nsy: np.ndarray
     #: int32, shape (M,): the cell each node is listed in (-1: not listed).
     ncell: np.ndarray
+
+
+# The columns of Motion.par.  A translation: the unit direction, the speed, the times it
+# starts and stops; an oscillation: the unit direction, the amplitude, the angular
+# frequency and the phase (shifted by amplitude * sin(omega t + phase) along it).
+M_DX = 0
+M_DY = 1
+M_SPEED = 2
+M_AMPLITUDE = 2
+M_BEGIN = 3
+M_OMEGA = 3
+M_END = 4
+M_PHASE = 4
+N_MOTION = 5
+#: Motion.kind: a segment at rest, one translated at a constant velocity for a while,
+#: one that oscillates.
+FIXED = 0
+LINEAR = 1
+SINE = 2
+
+
+class Motion(NamedTuple):
+    """Wall segments that move (see :mod:`.moving`; ``None`` where all are fixed).  The
+    segments' arrays in :class:`Walls` hold where each was given; at time ``t`` it is
+    shifted along its direction by :func:`.moving.shift`."""
+
+    #: int64, shape (S,): ``FIXED``, ``LINEAR`` or ``SINE``.
+    kind: np.ndarray
+    #: float64, shape (S, N_MOTION): the parameters (``M_*``).
+    par: np.ndarray
 
 
 class ModelFamilies(NamedTuple):

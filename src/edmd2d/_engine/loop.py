@@ -64,6 +64,10 @@ argument per physics family, each ``None`` when unused:
     every cell of their footprint: a wide disk's crossing changes its footprint by a
     column or a row (or wraps its centre), and a narrow disk also meets the wide disks
     listed in its own cell.
+``motion``
+    wall segments that move (``layout.Motion``, :mod:`.moving`): a disk's contact with
+    one is searched along the segment's path, and the collision reflects the velocity
+    relative to the segment's and tallies the work it does.
 
 numba prunes the branches of an argument that is ``None``, so each combination of
 families compiles its own ``run``, only when used, and the elastic default compiles to
@@ -185,7 +189,7 @@ def _make_room(m, k, log_t, log_e, log_j):
 @kernel
 def run(control, particles, grid, walls, calendar, tallies, log,
         contact, heated, thermostat, uniforms, gravity, growth, rest, shear, helfand,
-        rough, wide):
+        rough, wide, motion):
     """Process events in time order (``control.mode`` RUN_EVENTS), or (``mode``
     PREDICT_ALL) predict every disk's next event from the time ``out[0]`` and rebuild
     the queue.  (``t_end``, ``max_collisions``, ``max_events``, ``mode``, ``out`` and
@@ -491,7 +495,8 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                     vix, viy = S[i, VX], S[i, VY]
                 # (One call site: each inlined copy lengthens the first compilation.)
                 response.collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf,
-                                      wa, wb, contact, heated, uniforms, gravity, growth)
+                                      wa, wb, contact, heated, uniforms, gravity, growth,
+                                      motion)
                 if rough is not None and sticks:
                     _rough.wall(i, t, kind, partner, aux, vix, viy, S, invm, acc, wacc, gf,
                                 wa, wb, rough)
@@ -590,7 +595,8 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 d = redo0 if k == 0 else redo1
                 dk = direction if k == 0 else -1
             t_new = predict(d, t, dk, S, E, tcand, stamp, gi, gf, head, nxt,
-                            wa, wb, wstart, wwall, wsx, wsy, gravity, growth, shear, wide)
+                            wa, wb, wstart, wwall, wsx, wsy, gravity, growth, shear, wide,
+                            motion)
             E[d, STAGED] = 0  # (a new event: no stage of the lookahead yet)
             if mode == PREDICT_ALL:
                 qt[d] = t_new

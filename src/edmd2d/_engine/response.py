@@ -44,7 +44,9 @@ from __future__ import annotations
 import math
 
 from .._jit import njit
+from . import moving as _moving
 from . import sheared
+from .flight import acceleration
 from .layout import (
     A_BOX,
     A_DISSIPATED,
@@ -55,7 +57,11 @@ from .layout import (
     A_VIRIAL_XX,
     A_VIRIAL_XY,
     A_VIRIAL_YY,
+    A_WORK,
     BOX,
+    FIXED,
+    M_DX,
+    M_DY,
     VX,
     VY,
     W_CONTACTS,
@@ -65,6 +71,7 @@ from .layout import (
     W_HEAT,
     W_LEFT,
     W_RIGHT,
+    W_WORK,
     R,
     X,
     Y,
@@ -220,13 +227,13 @@ def _note_collision(i, t, invm, contact):
 
 
 @njit
-def wall_normal(i, kind, partner, aux, S, gf, wa, wb):
+def wall_normal(i, t, kind, partner, aux, S, gf, wa, wb, motion):
     """The normal ``n`` from the wall of a BOX (side ``aux``) or SEGMENT (``partner``,
-    its side or end point and image shift packed in ``aux``) event into disk ``i``'s
-    side, not normalised for a segment (as for a pair, see :func:`collide_pair`): ``(nx,
-    ny, nn, col)`` with ``nn = n.n`` (exactly 1 at a box wall) and ``col`` the
-    segment's tally of that contact (``W_LEFT``, ``W_RIGHT`` or ``W_ENDS``; unused for
-    a box wall)."""
+    its side or end point and image shift packed in ``aux``; where it is at time ``t``,
+    under ``motion``) event into disk ``i``'s side, not normalised for a segment (as for
+    a pair, see :func:`collide_pair`): ``(nx, ny, nn, col)`` with ``nn = n.n`` (exactly
+    1 at a box wall) and ``col`` the segment's tally of that contact (``W_LEFT``,
+    ``W_RIGHT`` or ``W_ENDS``; unused for a box wall)."""
     if kind == BOX:
         # Lower wall: normal +e; upper wall: normal -e.
         sign = 1.0 if aux % 2 == 0 else -1.0
@@ -237,6 +244,10 @@ def wall_normal(i, kind, partner, aux, S, gf, wa, wb):
     sx, sy = unpack_shift(code)
     shx = sx * gf[0]
     shy = sy * gf[1]
+    if motion is not None and motion.kind[partner] != FIXED:
+        moved = _moving.shift(partner, t, motion)
+        shx += moved * motion.par[partner, M_DX]
+        shy += moved * motion.par[partner, M_DY]
     ax = wa[partner, 0] + shx
     ay = wa[partner, 1] + shy
     bx = wb[partner, 0] + shx
@@ -453,7 +464,7 @@ def hot(kind, partner, aux, heated):
 
 @njit(inline="always")
 def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, contact, heated,
-                 uniforms, gravity, growth):
+                 uniforms, gravity, growth, motion):
     """Resolve the contact of disk ``i`` (at time ``t``) with box wall ``aux`` (``kind``
     BOX: x=0, x=width, y=0, y=height) or with the wall segment ``partner`` (its side or
     an end point, and its image shift, packed in ``aux``), and add the impulse to that
@@ -463,8 +474,11 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
     a box wall (:func:`_rest`), and leaves a wall it rested on when a segment gives it
     a velocity along that wall's normal.  Under growth the disk's rim moves towards
     the wall at ``rate R_i``: the contact reverses the rate at which the gap closes
-    (see :func:`collide_pair`)."""
-    nx, ny, nn, col = wall_normal(i, kind, partner, aux, S, gf, wa, wb)
+    (see :func:`collide_pair`).  A moving segment (``motion``) reflects the normal
+    velocity relative to its own, ``u``, and does the work ``J.u`` on the disk
+    (``acc[A_WORK]``, ``wacc[partner, W_WORK]``); an oscillating one sends it off at
+    the parting speed at least (:func:`.moving.parting`)."""
+    nx, ny, nn, col = wall_normal(i, t, kind, partner, aux, S, gf, wa, wb, motion)
     if kind == BOX:
         slot = A_BOX + aux
     else:
@@ -473,6 +487,14 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
     # Mirror the normal velocity (scaled by e), if approaching; or, at a heated wall,
     # send the disk back with a velocity drawn afresh.
     vn = S[i, VX] * nx + S[i, VY] * ny  # (|n| times the normal velocity)
+    moving = motion is not None and kind != BOX and motion.kind[partner] != FIXED
+    v_min = 0.0  # (|n| times the least normal speed it leaves a moving segment at)
+    vn_lab = vn
+    if moving:
+        us = _moving.speed(partner, t, motion)
+        vn -= us * (motion.par[partner, M_DX] * nx + motion.par[partner, M_DY] * ny)
+        gx, gy = acceleration(i, gravity)
+        v_min = _moving.parting(S[i, R], partner, gx, gy, motion) * math.sqrt(nn)
     if growth is not None:
         vn, nx, ny, nn = _closing_wall(i, t, kind == BOX, col == W_ENDS, vn, nx, ny, nn, S,
                                        wa, wb, partner, aux, gf, growth)
@@ -482,9 +504,12 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
     if heated is not None and hot:
         _heated_contact(i, kind, partner, aux, nx, ny, nn, vn, slot, col, S, invm, acc,
                         wacc, heated, uniforms)
-    elif vn < 0.0:
-        f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, contact)
+    elif vn < 0.0 or (moving and vn < v_min):
+        diss = acc[A_DISSIPATED]
+        f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, contact) if vn < 0.0 else 0.0
         q = -f * vn / nn  # the velocity change is q n
+        if moving and vn + q * nn < v_min:
+            q = (v_min - vn) / nn  # (at least the parting speed: see moving.parting)
         S[i, VX] += q * nx
         S[i, VY] += q * ny
         if kind == BOX:
@@ -496,6 +521,12 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
             wacc[partner, W_FX] -= q * nx / invm[i]
             wacc[partner, W_FY] -= q * ny / invm[i]
             wacc[partner, col] += impulse
+            if moving:
+                # The work of the segment: the kinetic energy the disk gained and what
+                # the contact dissipated (J.u for a contact that reflects vn).
+                work = (q * (vn_lab + 0.5 * q * nn)) / invm[i] + (acc[A_DISSIPATED] - diss)
+                wacc[partner, W_WORK] += work
+                acc[A_WORK] += work
     _note_collision(i, t, invm, contact)
     if gravity is not None:
         if kind == BOX and not hot:

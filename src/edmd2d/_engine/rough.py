@@ -125,7 +125,7 @@ def wall(i, t, kind, partner, aux, vix, viy, S, invm, acc, wacc, gf, wa, wb, rou
     """The tangential impulse of disk ``i`` on the wall of a BOX or SEGMENT event at
     ``t``, whose normal impulse changed its velocity from ``(vix, viy)``; a segment
     receives the opposite impulse (``wacc``)."""
-    nx, ny, nn, _ = wall_normal(i, kind, partner, aux, S, gf, wa, wb)
+    nx, ny, nn, _ = wall_normal(i, t, kind, partner, aux, S, gf, wa, wb, None)
     norm = math.sqrt(nn)
     nx /= norm
     ny /= norm

@@ -13,6 +13,10 @@ partner's stamp is unchanged); disks that entered the old neighbourhood since th
 predicted against ``i`` themselves; so only the row of cells that comes into range
 must be scanned.  A wrap, or a stale kept candidate, falls back to a full scan.
 
+Moving wall segments (:mod:`.moving`) are listed wherever their path comes near; a
+disk's contact with one is searched up to its cell exit at the latest, which a full or
+partial scan after the crossing takes up again.
+
 Wide disks (:mod:`.wide`): a narrow disk also scans the wide disks listed in its own
 cell (:func:`_scan_wide_list`); a wide disk is predicted by :func:`_predict_wide`, over
 the cells of its footprint, and schedules the next change of its footprint instead
@@ -22,6 +26,7 @@ of a cell crossing.
 from __future__ import annotations
 
 from .._jit import njit
+from . import moving as _moving
 from . import prefetch, sheared
 from .flight import acceleration, position_at, velocity_at
 from .grid import neighbour
@@ -30,6 +35,7 @@ from .layout import (
     BOX,
     CELL,
     DISK,
+    FIXED,
     KIND,
     NONE,
     PARTNER,
@@ -135,18 +141,24 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
 
 
 @njit(inline="always")
-def _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall, wsx, wsy,
-                best, partner, aux, gravity, growth):
+def _scan_walls(t, x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall, wsx, wsy,
+                best, partner, aux, gravity, growth, motion, horizon):
     """Earliest contact with the wall segments listed for cell ``c``, if before ``best``
     (``gx, gy``: the disk's acceleration under gravity; ``dr``: its radius's growth
-    speed under growth)."""
+    speed under growth; a moving segment, under ``motion``, searched up to
+    ``horizon`` at most)."""
     if wa.shape[0] == 0:  # no segments: spare the bucket lookup (a cache miss at large N)
         return best, partner, aux
     for k in range(wstart[c], wstart[c + 1]):
         w = wwall[k]
         shx = wsx[k] * gf[0]
         shy = wsy[k] * gf[1]
-        if growth is not None:
+        if motion is not None and motion.kind[w] != FIXED:
+            dtw, part = _moving.contact_time(t, x, y, vx, vy, gx, gy, r,
+                                             wa[w, 0] + shx, wa[w, 1] + shy,
+                                             wb[w, 0] + shx, wb[w, 1] + shy, w, motion,
+                                             min(best, horizon))
+        elif growth is not None:
             dtw, part = segment_time_grow(x, y, vx, vy, r, dr,
                                           wa[w, 0] + shx, wa[w, 1] + shy,
                                           wb[w, 0] + shx, wb[w, 1] + shy)
@@ -199,15 +211,23 @@ def _box_walls(x, y, vx, vy, gx, gy, r, dr, gi, gf, gravity, growth):
 
 
 @njit(inline="always")
-def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tcand, E, gi, gf, gravity):
-    """The time of disk ``i``'s next event: the earlier of its kept candidate and
-    leaving its cell (whose direction is recorded in ``E[i, KIND]``)."""
+def _exits(x, y, vx, vy, gx, gy, cx, cy, gi, gf, gravity):
+    """The times until the centre leaves its cell ``(cx, cy)`` along x and along y, with
+    their directions (+1 or -1)."""
     if gravity is None:
         dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
         dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
     else:
         dtx, dirx = exit_time_accel(x, vx, gx, cx, gf[2], gi[0], gi[2] != 0)
         dty, diry = exit_time_accel(y, vy, gy, cy, gf[3], gi[1], gi[3] != 0)
+    return dtx, dirx, dty, diry
+
+
+@njit(inline="always")
+def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tcand, E, gi, gf, gravity):
+    """The time of disk ``i``'s next event: the earlier of its kept candidate and
+    leaving its cell (whose direction is recorded in ``E[i, KIND]``)."""
+    dtx, dirx, dty, diry = _exits(x, y, vx, vy, gx, gy, cx, cy, gi, gf, gravity)
     if dty < dtx:
         dtx = dty
         aux = 2 if diry > 0 else 3
@@ -219,7 +239,7 @@ def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tcand, E, gi, gf, gravity):
 
 @njit(inline="always")
 def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
-            wa, wb, wstart, wwall, wsx, wsy, gravity, growth, shear, wide):
+            wa, wb, wstart, wwall, wsx, wsy, gravity, growth, shear, wide, motion):
     """Predict disk ``i``'s next event from time ``t``, keep its best non-crossing
     candidate, and return the time of the scheduled event.
 
@@ -231,6 +251,8 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
 
     ``growth``: ``None``, or radii that grow (``layout.Growth``, :func:`growth_factor`).
     ``shear``: ``None``, or Lees-Edwards boundaries (``layout.Shear``, :mod:`.sheared`).
+    ``motion``: ``None``, or wall segments that move (``layout.Motion``,
+    :mod:`.moving`).
     ``wide``: ``None``, or disks wider than the cells (``layout.Wide``,
     :mod:`.wide`): a wide disk is predicted by :func:`.wide.predict` (``direction``
     then the code of its crossing), and a narrow one also scans its own cell's list of
@@ -307,8 +329,12 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
             partner = pd
             aux = ad
             pst = ps
-    bw, pw, aw = _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall,
-                             wsx, wsy, best, -1, 0, gravity, growth)
+    horizon = INF
+    if motion is not None:
+        dtx, _, dty, _ = _exits(x, y, vx, vy, gx, gy, cx, cy, gi, gf, gravity)
+        horizon = min(dtx, dty)
+    bw, pw, aw = _scan_walls(t, x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall,
+                             wsx, wsy, best, -1, 0, gravity, growth, motion, horizon)
     if bw < best:
         best = bw
         kind = SEGMENT

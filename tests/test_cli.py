@@ -481,3 +481,54 @@ def test_a_failed_run_keeps_what_it_measured_and_resume_says_why(tmp_path, capsy
     err = capsys.readouterr().err
     assert "this run failed at t=" in err and "[model] tc" in err
     assert ed.checkpoint.load(out / "checkpoint.edmd2d").time == state.time  # (untouched)
+
+
+SHAKEN = CONFIG.replace("temperature = 1.0\n", """temperature = 1.0
+periodic = [true, false]
+""").replace("[model]\n", """[model]
+gravity = [0.0, -1.0]
+""") + """
+[[walls]]
+start = [0.0, 1.0]
+end = [20.0, 1.0]
+amplitude = 0.4
+omega = 6.0
+[[walls]]
+start = [0.0, 19.0]
+end = [20.0, 19.0]
+velocity = [0.0, -0.5]
+distance = 2.0
+begin = 1.0
+"""
+
+
+def test_walls_that_move_run_and_resume_bit_for_bit(tmp_path):
+    """A shaken floor and a piston from a configuration file; a run stopped half way
+    and resumed from its checkpoint ends exactly where the whole run ends."""
+    sim, _ = config.build(config.loads(SHAKEN), seed=seed_of(6))
+    motions = sim.families["moving_walls"].motions()
+    assert motions[0] == ed.Oscillation(0.4, 6.0)
+    assert motions[1] == ed.Translation((0.0, -0.5), 2.0, 1.0)
+    whole, half = tmp_path / "whole", tmp_path / "half"
+    path = write(tmp_path, SHAKEN)
+    assert run(["run", path, "-o", whole, "--no-progress"]) == 0
+    assert run(["run", path, "-o", half, "--until", "2.5", "--no-progress"]) == 0
+    assert run(["resume", half / "checkpoint.edmd2d", "--no-progress"]) == 0
+    a = ed.checkpoint.load(whole / "checkpoint.edmd2d")
+    b = ed.checkpoint.load(half / "checkpoint.edmd2d")
+    assert a.time == b.time
+    np.testing.assert_array_equal(a.positions, b.positions)
+    np.testing.assert_array_equal(a.wall_work(), b.wall_work())
+    assert a.wall_work()[0] != 0.0 and a.wall_positions[1, 0, 1] == 17.0
+
+
+@pytest.mark.parametrize("wall, word", [
+    ("velocity = [0.0, 1.0]", r"walls\[0\].velocity: velocity needs distance too"),
+    ("amplitude = 0.5\nomega = 1.0\ndistance = 2.0",
+     r"walls\[0\].amplitude: a wall moves by velocity and distance"),
+    ("amplitude = -0.5\nomega = 1.0", r"walls\[0\].amplitude: must be > 0"),
+])
+def test_bad_wall_motions_are_refused_by_name(wall, word):
+    with pytest.raises(config.ConfigError, match=word):
+        config.loads(CONFIG + "\n[[walls]]\nstart = [0.0, 8.0]\nend = [20.0, 8.0]\n" + wall
+                     + "\n")

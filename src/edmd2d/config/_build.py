@@ -7,7 +7,7 @@ import numpy as np
 from .. import builders, physics
 from .._validate import argument_of, as_generator
 from ..builders import make_gas, random_gas
-from ..geometry import Wall
+from ..geometry import Oscillation, Translation, Wall
 from ..simulation import Simulation
 from ._schema import _KINDS, ConfigError, RunConfig
 
@@ -18,6 +18,7 @@ _ARGUMENT_KEYS = {
     "radii": ("gas", "species"), "masses": ("gas", "mass"), "aspect": ("gas", "aspect"),
     "periodic": ("gas", "periodic"), "species": ("gas", "species"),
     "walls": ("walls",), "positions": ("walls",), "velocities": ("walls",),
+    "wall_motions": ("walls",),
     "seed": ("model", "seed"),
 }
 
@@ -106,16 +107,25 @@ def build(cfg: RunConfig,
             if not (species_masses == species_masses[0]).all():
                 vel = builders._maxwell_boltzmann(rng, mass, gas["temperature"],
                                                   sum(start.box.periodic))
-        walls = []
+        walls: list[Wall] = []
+        motions = {}
         for w in cfg.data["walls"]:
+            first = len(walls)
             if w["polygon"] is not None:
                 walls.extend(Wall.polygon(w["polygon"]))
             else:
                 walls.append(Wall(tuple(w["start"]), tuple(w["end"])))
+            motion = _motion(w)
+            if motion is not None:
+                motions.update({k: motion for k in range(first, len(walls))})
         open_at_start, _ = wall_openings(cfg.data["walls"])
-        # (The rule of make_gas(walls=...); the species are labelled before, on the
-        # whole lattice, so that each keeps its count there.)
-        keep = builders.clear_of_walls(pos, rad, walls, start.box)
+        # (The rule of make_gas(walls=...), for the segments where they are at the
+        # start; the species are labelled before, on the whole lattice, so that each
+        # keeps its count there.)
+        placed = [Wall(np.add(w.start, motions[k].shift(0.0)),
+                       np.add(w.end, motions[k].shift(0.0))) if k in motions else w
+                  for k, w in enumerate(walls)]
+        keep = builders.clear_of_walls(pos, rad, placed, start.box)
         if not keep.any():
             raise cfg.error(("walls",), "the wall segments cross every disk of the gas")
         # (Sheared: the velocities drawn are the peculiar ones, in the flow.)
@@ -124,7 +134,7 @@ def build(cfg: RunConfig,
             pos[keep], vel[keep], rad[keep], mass[keep], box=start.box, walls=walls,
             open_walls=open_at_start,
             species=None if labels is None else labels[keep], seed=rng,
-            **_physics_keywords(model))
+            **_physics_keywords(model, motions))
     except (TypeError, ValueError) as exc:
         if isinstance(exc, ConfigError):
             raise
@@ -132,11 +142,23 @@ def build(cfg: RunConfig,
     return sim, int((~keep).sum())
 
 
-def _physics_keywords(model: dict) -> dict:
+def _motion(row: dict) -> Translation | Oscillation | None:
+    """The motion a checked [[walls]] table gives its segments, or ``None``."""
+    if row["velocity"] is not None:
+        return Translation(row["velocity"], row["distance"],
+                           0.0 if row["begin"] is None else row["begin"])
+    if row["amplitude"] is not None:
+        return Oscillation(row["amplitude"], row["omega"],
+                           (0.0, 1.0) if row["direction"] is None else row["direction"],
+                           0.0 if row["phase"] is None else row["phase"])
+    return None
+
+
+def _physics_keywords(model: dict, motions: dict) -> dict:
     """The values ``[model]`` gives the keywords of the registered physics families, as
     the library takes them: a table of coefficients as an array, the index of a heated
-    wall segment as an integer."""
-    out = {}
+    wall segment as an integer; and the ``motions`` of the ``[[walls]]`` tables."""
+    out: dict = {"wall_motions": motions} if motions else {}
     for name, kw in physics.KEYWORDS.items():
         value = model.get(name)
         if value is None or not (kw.kind in _KINDS or kw.kind == "walls"):

@@ -142,6 +142,29 @@ def _check_wall_temperatures(cfg, model: dict) -> None:
     cfg.data["model"]["wall_temperatures"] = out
 
 
+_TRANSLATION = ("velocity", "distance", "begin")
+_OSCILLATION = ("amplitude", "omega", "direction", "phase")
+
+
+def _check_motion(cfg, where: tuple, row: dict) -> None:
+    """A [[walls]] table moves as a translation (``velocity`` and ``distance``, maybe
+    ``begin``) or an oscillation (``amplitude`` and ``omega``, maybe ``direction`` and
+    ``phase``), or not at all."""
+    given = [key for key in _TRANSLATION + _OSCILLATION if row[key] is not None]
+    if not given:
+        return
+    kind = _TRANSLATION if given[0] in _TRANSLATION else _OSCILLATION
+    other = [key for key in given if key not in kind]
+    if other:
+        raise cfg.error(where + (other[0],),
+                        f"a wall moves by velocity and distance (a translation) or by "
+                        f"amplitude and omega (an oscillation), not both: {other[0]} with "
+                        f"{given[0]}")
+    for key in kind[:2]:
+        if row[key] is None:
+            raise cfg.error(where + (given[0],), f"{given[0]} needs {key} too")
+
+
 def _check_walls(cfg, walls) -> None:
     if not isinstance(walls, list) or not all(isinstance(w, dict) for w in walls):
         raise cfg.error(("walls",), "expected tables [[walls]] (start and end, or polygon)")
@@ -155,5 +178,6 @@ def _check_walls(cfg, walls) -> None:
         if row["open"] and row["opens_at"] is not None:
             raise cfg.error(("walls", k, "opens_at"),
                             "a wall that starts open (open = true) cannot open later")
+        _check_motion(cfg, ("walls", k), row)
         rows.append(row)
     cfg.data["walls"] = rows

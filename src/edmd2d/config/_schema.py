@@ -222,6 +222,15 @@ _WALL = {
     "polygon": (_polygon, OPTIONAL),
     "open": (_switch, False),
     "opens_at": (_number(0.0), OPTIONAL),
+    # A motion (edmd2d.Translation with velocity and distance, or edmd2d.Oscillation
+    # with amplitude and omega); a polygon's sides move together.
+    "velocity": (_vector(), OPTIONAL),
+    "distance": (_number(0.0, lo_open=True), OPTIONAL),
+    "begin": (_number(), OPTIONAL),
+    "amplitude": (_number(0.0, lo_open=True), OPTIONAL),
+    "omega": (_number(0.0, lo_open=True), OPTIONAL),
+    "direction": (_vector(), OPTIONAL),
+    "phase": (_number(), OPTIONAL),
 }
 _RUN = {
     "equilibrate": (_number(0.0), 0.0),

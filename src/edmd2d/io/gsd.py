@@ -26,8 +26,10 @@ What a frame holds (HOOMD conventions):
 - ``log/edmd2d/...``: what the schema has no place for, so that nothing is lost: the
   ``time``; the box's ``W, H`` in float64 (``box``); the ``periodic`` flags of the two
   axes (1 periodic, 0 walled); the wall segments ``walls`` as rows
-  ``(x0, y0, x1, y1)`` in the frame's centred coordinates, and ``open_walls`` (1 for
-  each segment open, ``Simulation.open_wall``);
+  ``(x0, y0, x1, y1)`` in the frame's centred coordinates, as given, and where they
+  are at the frame's time (``wall_positions``: segments that move, the family
+  :class:`edmd2d.physics.MovingWalls`, have moved), and ``open_walls`` (1 for each
+  segment open, ``Simulation.open_wall``);
   ``gravity``; ``<family>/<keyword>`` for each physics family registered with
   :func:`edmd2d.physics.register` that the simulation has (which :func:`read` passes
   back); ``immovable`` (1 for disks of infinite mass); the counts
@@ -206,6 +208,9 @@ def _frame(sim, writer: Writer):
         "edmd2d/periodic": np.array(box.periodic, np.uint8),
         "edmd2d/walls": walls,
         "edmd2d/open_walls": np.asarray(sim.open_walls, np.uint8),
+        # (Where the segments are at the frame's time: moving segments move.)
+        "edmd2d/wall_positions": (np.asarray(sim.wall_positions, np.float64)
+                                  - np.asarray(centre, np.float64)).reshape(-1, 4),
         "edmd2d/gravity": np.asarray(sim.gravity, np.float64),
         "edmd2d/immovable": (~np.isfinite(masses)).astype(np.uint8),
         "edmd2d/collisions": np.array([counts.collisions], np.int64),

@@ -241,7 +241,7 @@ class _Scene:
         self.box_edges = _box_artist(box, wall_color)
         ax.add_collection(self.box_edges, autolim=False)
         self.walls = LineCollection(
-            [[w_.start, w_.end] for w_ in sim.walls], colors=wall_color, linewidths=1.5,
+            self._wall_segments(), colors=wall_color, linewidths=1.5,
             capstyle="round", zorder=3, clip_on=False,
         )
         self.walls.set_gid("edmd2d-walls")
@@ -306,6 +306,9 @@ class _Scene:
             changed.append(self.marks)
         if self._style_open_walls():
             changed.append(self.walls)
+        if "moving_walls" in getattr(sim, "families", {}):
+            self.walls.set_segments(self._wall_segments())  # (where they are now)
+            changed.append(self.walls)
         if self.trails is not None:
             self._update_trails(pos)
             changed.append(self.trails)
@@ -314,6 +317,14 @@ class _Scene:
                 f"t = {sim.time:.2f}{self._label_sep}collisions {sim.counts.collisions:,}")
             changed.append(self.text)
         return changed
+
+    def _wall_segments(self) -> list:
+        """The wall segments where they are now (``Simulation.wall_positions``: moving
+        segments move), as pairs of points."""
+        where = getattr(self.sim, "wall_positions", None)
+        if where is None:
+            return [[w_.start, w_.end] for w_ in self.sim.walls]
+        return list(np.asarray(where))
 
     def _style_open_walls(self) -> bool:
         """Draw the open wall segments (``Simulation.open_walls``) faint and dashed;

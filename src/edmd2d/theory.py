@@ -77,6 +77,7 @@ import math
 
 import numpy as np
 from numpy.typing import ArrayLike
+from scipy.integrate import quad as _quad
 
 from ._validate import as_positive_float
 
@@ -87,6 +88,7 @@ __all__ = [
     "santos_z",
     "virial_z",
     "kolafa_rottner_z",
+    "adiabatic_temperature",
     "contact_value",
     "enskog_collision_rate",
     "homogeneous_cooling",
@@ -283,6 +285,47 @@ def kolafa_rottner_z(eta: ArrayLike) -> float | np.ndarray:
     e = _eta(eta, upper=math.nextafter(ETA_KOLAFA_ROTTNER_MAX, 1.0))
     x = e / (1.0 - e)
     return _out(sum(a * x**i for i, a in _KOLAFA_ROTTNER.items()))
+
+
+def adiabatic_temperature(eta_start: float, eta_end: float, temperature: float = 1.0,
+                          z=None) -> float:
+    """The temperature of a hard-disk fluid compressed (or expanded) slowly, with no
+    heat exchanged, from the packing fraction ``eta_start`` at ``temperature`` to
+    ``eta_end``: its adiabat.
+
+    The energy of hard disks is all kinetic, ``U = N kT`` in 2D, and the work of a slow
+    piston is ``-P dA``: ``N k dT = -N kT Z dA / A``, so ``d ln T / d ln eta = Z(eta)``
+    and ``T_end = T exp(integral of Z(eta) / eta from eta_start to eta_end)``.  For an
+    ideal gas (``Z = 1``) that is ``T A = const``.
+
+    Parameters
+    ----------
+    eta_start, eta_end : float
+        Packing fractions in the fluid, in ``(0, 0.7069]`` for the default ``z``.
+    temperature : float, default 1
+        The temperature at ``eta_start``.
+    z : callable, optional
+        The equation of state ``Z(eta)``; default :func:`kolafa_rottner_z`.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> round(adiabatic_temperature(0.01, 0.02, z=lambda eta: 1.0), 12)  # T A = const
+    2.0
+    >>> round(adiabatic_temperature(0.1, 0.3), 4)
+    5.3423
+    """
+    if z is None:
+        z = kolafa_rottner_z
+    for name, value in (("eta_start", eta_start), ("eta_end", eta_end)):
+        if not 0.0 < float(value) < 1.0:
+            raise ValueError(f"{name} must lie in (0, 1), got {value!r}")
+    integral, _ = _quad(lambda eta: float(z(eta)) / eta, float(eta_start), float(eta_end),
+                        epsabs=0.0, epsrel=1e-12)
+    return float(temperature) * math.exp(integral)
 
 
 def contact_value(z: ArrayLike, eta: ArrayLike) -> float | np.ndarray:

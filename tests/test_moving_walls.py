@@ -237,3 +237,38 @@ def test_fixed_walls_run_as_without_the_keyword():
     b.advance(until=5.0)
     assert np.array_equal(a.positions, b.positions)
     assert "moving_walls" not in b.families
+
+
+def test_a_slow_disk_near_a_fast_shaker_is_left_alone():
+    """A disk drifting at 1e-5 just beyond the reach of a segment shaken at omega = 100:
+    its search spans a long time (its cell exit), which the sine's amplitude bound
+    clears at once; no contact is ever made up."""
+    for phase in (0.0, 2.0, 5.0):
+        sim = ed.Simulation([[10.0, 5.65]], [[1e-5, 0.0]], 0.5, box=ed.Box(20.0, 20.0),
+                            walls=[ed.Wall((5.0, 5.0), (15.0, 5.0))],
+                            wall_motions={0: ed.Oscillation(0.1, 100.0, phase=phase)})
+        sim.advance(until=2000.0)
+        assert sim.counts.wall_collisions == 0
+        np.testing.assert_array_equal(sim.velocities, [[1e-5, 0.0]])
+
+
+def test_what_reads_the_segments_reads_them_where_they_are():
+    """close_wall and the contact network see a moved segment at its place now, not
+    where it was given (and the square, its top side moved, no longer closes)."""
+    box = ed.Box(10.0, 10.0, periodic=False)
+    square = ed.Wall.polygon([(1.0, 1.0), (9.0, 1.0), (9.0, 9.0), (1.0, 9.0)])
+    sim = ed.Simulation([[5.0, 3.0]], [[0.0, 0.0]], 0.5, box=box, walls=square,
+                        wall_motions={2: ed.Translation((0.0, -1.0), 4.0, 0.0)})
+    sim.advance(until=4.0)  # (the top side came down from y = 9 to y = 5)
+    np.testing.assert_allclose(sim.wall_positions[2], [[9.0, 5.0], [1.0, 5.0]])
+    assert ed.measurements.container_area(sim) == pytest.approx(100.0)  # (the box's)
+    sim.set_positions([[5.0, 4.5]])  # (touching the top side where it is now)
+    with pytest.warns(UserWarning, match="rattler"):
+        net = ed.contact_network(sim, tol=1e-6)
+    assert net.contact_numbers.tolist() == [1]  # (the top side, where it is now)
+    sim.open_wall(2)
+    sim.set_positions([[5.0, 5.2]])
+    with pytest.raises(ValueError, match="overlap"):
+        sim.close_wall(2)
+    sim.set_positions([[5.0, 8.8]])  # (where the side was given: free now)
+    sim.close_wall(2)

@@ -361,7 +361,9 @@ def _inputs(source, box, radii, walls):
         for name, value in (("box", box), ("radii", radii), ("walls", walls)):
             if value is not None:
                 raise TypeError(f"{name} must not be given with a Simulation (it has its own)")
-        pos, rad, box, segs = source.positions, source.radii, source.box, source.walls
+        pos, rad, box = source.positions, source.radii, source.box
+        # (The segments where they are now: some may move.)
+        segs = tuple(Wall(a, b) for a, b in source.wall_positions)
     else:
         if box is None:
             raise TypeError("box is required with an array of positions: pass "

@@ -737,7 +737,10 @@ def container_area(sim: Simulation) -> float:
 
 def _container(sim) -> tuple[float, str]:
     """``(area, source)`` of :func:`container_area` (see :func:`edmd2d.geometry.container`)."""
-    closed = [w for w, is_open in zip(sim.walls, sim.open_walls) if not is_open]
+    # (The segments where they are now: some may move.)
+    where = getattr(sim, "wall_positions", None)
+    walls = sim.walls if where is None else [Wall(a, b) for a, b in where]
+    closed = [w for w, is_open in zip(walls, sim.open_walls) if not is_open]
     return container(sim.box, closed, sim.positions[np.isfinite(sim.masses)])
 
 

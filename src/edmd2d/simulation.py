@@ -481,9 +481,8 @@ class Simulation(SimulationBase):
         state = self._state
         if not state.wall_open[k]:
             return
-        wall = state.walls[k]
-        dist = _gaps._segment_distance(self.positions, np.asarray(wall.start, np.float64),
-                                       np.asarray(wall.end, np.float64), state.box)
+        start, end = self.wall_positions[k]  # (where it is now: it may move)
+        dist = _gaps._segment_distance(self.positions, start, end, state.box)
         rad = self.radii
         inside = dist < rad * (1.0 - _checks.OVERLAP_TOL)
         if inside.any():

@@ -77,8 +77,11 @@ TOL_REL = 2.0**-48
 #: parting speed opens at least before the segment can catch up (:func:`parting`).
 PARTING_REL = 2.0**-40
 #: The most intervals the search examines: beyond, the disk is taken to touch the
-#: segment where the search stands (a contact it then leaves at :func:`parting`).
-MAX_STEPS = 1 << 16
+#: segment where the search stands (a contact it then leaves at :func:`parting`).  The
+#: quadratic part's range clears at once the stretches where a disk stays beyond the
+#: sine's reach, so that the search needs many intervals only while the disk is within
+#: the segment's sweep, where it is hit within a period: never reached in the tests.
+MAX_STEPS = 1 << 20
 
 
 @njit(inline="always")
@@ -187,6 +190,22 @@ def _out(f, length):
 
 
 @njit(inline="always")
+def _span(c0, c1, c2, a, b):
+    """The least and the largest value of ``c0 + c1 tau + c2 tau^2`` on ``[a, b]``."""
+    pa = c0 + a * (c1 + c2 * a)
+    pb = c0 + b * (c1 + c2 * b)
+    lo = min(pa, pb)
+    hi = max(pa, pb)
+    if c2 != 0.0:
+        v = -0.5 * c1 / c2
+        if a < v < b:
+            pv = c0 + v * (c1 + c2 * v)
+            lo = min(lo, pv)
+            hi = max(hi, pv)
+    return lo, hi
+
+
+@njit(inline="always")
 def _low(fa, fb, m, width):
     """The least value on an interval of ``width`` of a function with values ``fa``,
     ``fb`` at its ends and ``|F''| <= m``: the minimum of its linear interpolation less
@@ -231,6 +250,8 @@ def _oscillation_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion, hor
     mh = 2.0 * abs(h2) + abs(kh) * amp * omega * omega
     mf = 2.0 * abs(f2) + abs(kf) * amp * omega * omega
     mq = _reach(r, w, gx, gy, motion)  # (the relative flight's largest acceleration)
+    ah = abs(kh) * amp
+    af = abs(kf) * amp
     tol = TOL_REL * (r + amp)
     reach = r + tol
     reach2 = reach * reach
@@ -274,14 +295,18 @@ def _oscillation_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion, hor
         b = start + (j + 1) * width
         hb = _value(b, h0, h1, h2, kh, amp, omega, theta)
         fb = _value(b, f0, f1, f2, kf, amp, omega, theta)
-        # Lower bounds of |h| and of out(f) on [a, b].
-        low = _low(ha, hb, mh, width)
-        if low > 0.0:
-            bh = low
-        else:
-            high = -_low(-ha, -hb, mh, width)
-            bh = -high if high < 0.0 else 0.0
-        bf = max(_low(-fa, -fb, mf, width), _low(fa, fb, mf, width) - length, 0.0)
+        # Bounds of h and f on [a, b]: the interpolation's, and the quadratic part's
+        # range widened by the sine's amplitude (which clears long stretches at once
+        # where the disk stays beyond the segment's reach); then lower bounds of |h|
+        # and of out(f).
+        plo, phi = _span(h0, h1, h2, a, b)
+        low = max(_low(ha, hb, mh, width), plo - ah)
+        high = min(-_low(-ha, -hb, mh, width), phi + ah)
+        bh = low if low > 0.0 else (-high if high < 0.0 else 0.0)
+        plo, phi = _span(f0, f1, f2, a, b)
+        low = max(_low(fa, fb, mf, width), plo - af)
+        high = min(-_low(-fa, -fb, mf, width), phi + af)
+        bf = max(-high, low - length, 0.0)
         cleared = bh * bh + bf * bf > reach2
         if not cleared:
             ob = _out(fb, length)

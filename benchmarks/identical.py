@@ -132,8 +132,11 @@ def physics_digest(sim):
     # where it exists, so it is left out, to compare with revisions before it.)
     counts = np.asarray(sim._counts)
     acc = np.asarray(sim._acc)
-    extra = [a for a in (counts[5:], acc[14:15]) if a.any()]
-    for arr in (sim._S, acc[:14], sim._wacc, counts[:5], *extra):
+    wacc = np.asarray(sim._wacc)
+    # (Likewise the segments' first seven tallies; the work of moving ones, column 7
+    # and acc[16], enters only where it is not 0.)
+    extra = [a for a in (counts[5:], acc[14:15], acc[16:], wacc[:, 7:]) if a.any()]
+    for arr in (sim._S, acc[:14], wacc[:, :7], counts[:5], *extra):
         h.update(np.ascontiguousarray(arr).tobytes())
     m = sim._model
     if m is not None:

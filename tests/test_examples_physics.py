@@ -36,6 +36,7 @@ def load(name):
     ("transport_coefficients", {"N": 64, "DURATION": 400.0,
                                 "WINDOWS": {0.1: 10.0, 0.3: 4.0}, "TAIL_WINDOW": 10.0}),
     ("heavy_tracer", {"N": 2000, "DURATION": 20.0, "TIMED": 2}),
+    ("piston", {"N": 100, "SPEEDS": (0.05, 1.0), "SAMPLES": 8}),
 ])
 def test_example_writes_its_figure(name, small, tmp_path, capsys):
     module = load(name)

@@ -17,9 +17,9 @@ import math
 from collections.abc import Callable
 from typing import Any
 
+from ..geometry import Oscillation
 from ._resting import RestingRules
 from ._rough import RoughRules
-from ..geometry import Oscillation
 from ._times import _dot
 
 
@@ -29,10 +29,11 @@ class CollisionRules(RestingRules, RoughRules):
     The state is the one ``ReferenceSimulation`` sets up: the per-disk lists ``p``,
     ``v``, ``r``, ``m``, ``dr``, ``t_last``, ``resting`` and ``species``, the settings
     ``tc``, ``growth``, ``restitution``, ``wall_restitution``, ``gravity`` and
-    ``wall_kt``, the moving segments' ``motions``, the clock ``time``, the tallies ``dissipated``, ``wall_heat``,
-    ``wall_work``, ``collisions``, ``wall_collisions``, ``virial_xx``, ``virial_yy`` and
-    ``virial_xy``, ``heat_x`` and ``heat_y``, and the random draws ``_u`` and ``_gauss``
-    (one stream for the whole run, shared with the thermostat); and, where disks come
+    ``wall_kt``, the moving segments' ``motions``, the clock ``time``, the tallies
+    ``dissipated``, ``wall_heat``, ``wall_work``, ``collisions``, ``wall_collisions``,
+    ``virial_xx``, ``virial_yy`` and ``virial_xy``, ``heat_x`` and ``heat_y``, and the
+    random draws ``_u`` and ``_gauss`` (one stream for the whole run, shared with the
+    thermostat); and, where disks come
     to rest (``rest`` not ``None``), the state of :class:`RestingRules`, whose rules
     it calls after each contact.
     """

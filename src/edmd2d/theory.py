@@ -77,7 +77,6 @@ import math
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.integrate import quad as _quad
 
 from ._validate import as_positive_float
 
@@ -318,12 +317,15 @@ def adiabatic_temperature(eta_start: float, eta_end: float, temperature: float =
     >>> round(adiabatic_temperature(0.1, 0.3), 4)
     5.3423
     """
+    # (scipy.integrate only here: importing it with the package costs 0.25 s.)
+    from scipy.integrate import quad
+
     if z is None:
         z = kolafa_rottner_z
     for name, value in (("eta_start", eta_start), ("eta_end", eta_end)):
         if not 0.0 < float(value) < 1.0:
             raise ValueError(f"{name} must lie in (0, 1), got {value!r}")
-    integral, _ = _quad(lambda eta: float(z(eta)) / eta, float(eta_start), float(eta_end),
+    integral, _ = quad(lambda eta: float(z(eta)) / eta, float(eta_start), float(eta_end),
                         epsabs=0.0, epsrel=1e-12)
     return float(temperature) * math.exp(integral)
 

@@ -487,14 +487,16 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
     # Mirror the normal velocity (scaled by e), if approaching; or, at a heated wall,
     # send the disk back with a velocity drawn afresh.
     vn = S[i, VX] * nx + S[i, VY] * ny  # (|n| times the normal velocity)
-    moving = motion is not None and kind != BOX and motion.kind[partner] != FIXED
+    moving = False
     v_min = 0.0  # (|n| times the least normal speed it leaves a moving segment at)
     vn_lab = vn
-    if moving:
-        us = _moving.speed(partner, t, motion)
-        vn -= us * (motion.par[partner, M_DX] * nx + motion.par[partner, M_DY] * ny)
-        gx, gy = acceleration(i, gravity)
-        v_min = _moving.parting(S[i, R], partner, gx, gy, motion) * math.sqrt(nn)
+    if motion is not None:  # (each test of motion first: numba prunes them all)
+        if kind != BOX and motion.kind[partner] != FIXED:
+            moving = True
+            us = _moving.speed(partner, t, motion)
+            vn -= us * (motion.par[partner, M_DX] * nx + motion.par[partner, M_DY] * ny)
+            gx, gy = acceleration(i, gravity)
+            v_min = _moving.parting(S[i, R], partner, gx, gy, motion) * math.sqrt(nn)
     if growth is not None:
         vn, nx, ny, nn = _closing_wall(i, t, kind == BOX, col == W_ENDS, vn, nx, ny, nn, S,
                                        wa, wb, partner, aux, gf, growth)
@@ -504,11 +506,14 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
     if heated is not None and hot:
         _heated_contact(i, kind, partner, aux, nx, ny, nn, vn, slot, col, S, invm, acc,
                         wacc, heated, uniforms)
-    elif vn < 0.0 or (moving and vn < v_min):
+    elif vn < 0.0 or (motion is not None and moving and vn < v_min):
         diss = acc[A_DISSIPATED]
-        f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, contact) if vn < 0.0 else 0.0
+        if motion is not None and vn >= 0.0:
+            f = 0.0  # (touching, leaving too slowly: pushed to the parting speed)
+        else:
+            f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, contact)
         q = -f * vn / nn  # the velocity change is q n
-        if moving and vn + q * nn < v_min:
+        if motion is not None and moving and vn + q * nn < v_min:
             q = (v_min - vn) / nn  # (at least the parting speed: see moving.parting)
         S[i, VX] += q * nx
         S[i, VY] += q * ny
@@ -521,7 +526,7 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
             wacc[partner, W_FX] -= q * nx / invm[i]
             wacc[partner, W_FY] -= q * ny / invm[i]
             wacc[partner, col] += impulse
-            if moving:
+            if motion is not None and moving:
                 # The work of the segment: the kinetic energy the disk gained and what
                 # the contact dissipated (J.u for a contact that reflects vn).
                 work = (q * (vn_lab + 0.5 * q * nn)) / invm[i] + (acc[A_DISSIPATED] - diss)

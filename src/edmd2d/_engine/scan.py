@@ -210,10 +210,11 @@ def _box_walls(x, y, vx, vy, gx, gy, r, dr, gi, gf, gravity, growth):
     return best, kind, aux
 
 
-@njit(inline="always")
+@njit
 def _exits(x, y, vx, vy, gx, gy, cx, cy, gi, gf, gravity):
     """The times until the centre leaves its cell ``(cx, cy)`` along x and along y, with
-    their directions (+1 or -1)."""
+    their directions (+1 or -1).  (The horizon of a moving segment's search; the
+    schedule inlines the same arithmetic.)"""
     if gravity is None:
         dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
         dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
@@ -227,7 +228,12 @@ def _exits(x, y, vx, vy, gx, gy, cx, cy, gi, gf, gravity):
 def _schedule(i, t, x, y, vx, vy, gx, gy, cx, cy, tcand, E, gi, gf, gravity):
     """The time of disk ``i``'s next event: the earlier of its kept candidate and
     leaving its cell (whose direction is recorded in ``E[i, KIND]``)."""
-    dtx, dirx, dty, diry = _exits(x, y, vx, vy, gx, gy, cx, cy, gi, gf, gravity)
+    if gravity is None:
+        dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
+        dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
+    else:
+        dtx, dirx = exit_time_accel(x, vx, gx, cx, gf[2], gi[0], gi[2] != 0)
+        dty, diry = exit_time_accel(y, vy, gy, cy, gf[3], gi[1], gi[3] != 0)
     if dty < dtx:
         dtx = dty
         aux = 2 if diry > 0 else 3

@@ -56,6 +56,7 @@ import math
 from .._jit import njit
 from . import predict as _predict
 from .layout import (
+    FIXED,
     LINEAR,
     M_AMPLITUDE,
     M_BEGIN,
@@ -65,6 +66,8 @@ from .layout import (
     M_OMEGA,
     M_PHASE,
     M_SPEED,
+    pack_segment,
+    pack_shift,
 )
 from .predict import INF
 
@@ -126,6 +129,47 @@ def speed(w, t, motion):
         return par[w, M_SPEED] if par[w, M_BEGIN] <= t < par[w, M_END] else 0.0
     return (par[w, M_AMPLITUDE] * par[w, M_OMEGA]
             * math.cos(par[w, M_OMEGA] * t + par[w, M_PHASE]))
+
+
+@njit
+def scan_walls(t, x, y, vx, vy, gx, gy, r, c, cx, cy, gi, gf, wa, wb, wstart, wwall, wsx,
+               wsy, best, gravity, motion):
+    """Earliest contact with the wall segments listed for cell ``c`` (the disk's, at
+    ``(cx, cy)``), if before ``best``: ``(dt, segment, aux)`` as the prediction's scan of
+    fixed segments gives them, a moving segment searched up to the disk's cell exit
+    at the latest (a partial or full scan after the crossing takes it up again)."""
+    partner = -1
+    aux = 0
+    if wa.shape[0] == 0:
+        return best, partner, aux
+    if gravity is None:
+        dtx, _ = _predict.exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
+        dty, _ = _predict.exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
+    else:
+        dtx, _ = _predict.exit_time_accel(x, vx, gx, cx, gf[2], gi[0], gi[2] != 0)
+        dty, _ = _predict.exit_time_accel(y, vy, gy, cy, gf[3], gi[1], gi[3] != 0)
+    horizon = min(dtx, dty)
+    for k in range(wstart[c], wstart[c + 1]):
+        w = wwall[k]
+        shx = wsx[k] * gf[0]
+        shy = wsy[k] * gf[1]
+        ax = wa[w, 0] + shx
+        ay = wa[w, 1] + shy
+        bx = wb[w, 0] + shx
+        by = wb[w, 1] + shy
+        if motion.kind[w] != FIXED:
+            dtw, part = contact_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion,
+                                     min(best, horizon))
+        elif gx == 0.0 and gy == 0.0:
+            dtw, part = _predict.segment_time(x, y, vx, vy, r, ax, ay, bx, by)
+        else:
+            dtw, part = _predict.segment_time_accel(x, y, vx, vy, gx, gy, r, ax, ay, bx, by,
+                                                    best)
+        if dtw < best:
+            best = dtw
+            partner = w
+            aux = pack_segment(part, pack_shift(wsx[k], wsy[k]))
+    return best, partner, aux
 
 
 @njit

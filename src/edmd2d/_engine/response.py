@@ -62,6 +62,7 @@ from .layout import (
     FIXED,
     M_DX,
     M_DY,
+    SEGMENT,
     VX,
     VY,
     W_CONTACTS,
@@ -462,6 +463,43 @@ def hot(kind, partner, aux, heated):
     return heated.kt[aux if kind == BOX else 4 + partner] > 0.0
 
 
+@njit
+def _moving_contact(i, t, partner, aux, S, invm, acc, wacc, gf, wa, wb, contact, gravity,
+                    motion):
+    """:func:`collide_wall` for the moving segment ``partner``: the normal velocity
+    relative to the segment's, ``u``, is reflected (times ``e``, with the TC model as at
+    a fixed wall), an oscillating segment sends the disk off at the parting speed at
+    least (:func:`.moving.parting`), and the segment does the work ``J.u`` (with the
+    parting push, the kinetic energy gained plus what was dissipated) on the disk
+    (``acc[A_WORK]``, ``wacc[partner, W_WORK]``)."""
+    nx, ny, nn, col = wall_normal(i, t, SEGMENT, partner, aux, S, gf, wa, wb, motion)
+    wacc[partner, W_CONTACTS] += 1.0
+    vn_lab = S[i, VX] * nx + S[i, VY] * ny  # (|n| times the normal velocity)
+    us = _moving.speed(partner, t, motion)
+    vn = vn_lab - us * (motion.par[partner, M_DX] * nx + motion.par[partner, M_DY] * ny)
+    gx, gy = acceleration(i, gravity)
+    v_min = _moving.parting(S[i, R], partner, gx, gy, motion) * math.sqrt(nn)
+    if vn < 0.0 or vn < v_min:
+        diss = acc[A_DISSIPATED]
+        f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, contact) if vn < 0.0 else 0.0
+        q = -f * vn / nn  # the velocity change is q n
+        if vn + q * nn < v_min:
+            q = (v_min - vn) / nn  # (leaving touching: pushed to the parting speed)
+        S[i, VX] += q * nx
+        S[i, VY] += q * ny
+        impulse = q * math.sqrt(nn) / invm[i]
+        acc[A_SEGMENTS] += impulse
+        wacc[partner, W_FX] -= q * nx / invm[i]
+        wacc[partner, W_FY] -= q * ny / invm[i]
+        wacc[partner, col] += impulse
+        work = (q * (vn_lab + 0.5 * q * nn)) / invm[i] + (acc[A_DISSIPATED] - diss)
+        wacc[partner, W_WORK] += work
+        acc[A_WORK] += work
+    _note_collision(i, t, invm, contact)
+    if gravity is not None:
+        _release(i, S, gravity.support)
+
+
 @njit(inline="always")
 def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, contact, heated,
                  uniforms, gravity, growth, motion):
@@ -474,11 +512,13 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
     a box wall (:func:`_rest`), and leaves a wall it rested on when a segment gives it
     a velocity along that wall's normal.  Under growth the disk's rim moves towards
     the wall at ``rate R_i``: the contact reverses the rate at which the gap closes
-    (see :func:`collide_pair`).  A moving segment (``motion``) reflects the normal
-    velocity relative to its own, ``u``, and does the work ``J.u`` on the disk
-    (``acc[A_WORK]``, ``wacc[partner, W_WORK]``); an oscillating one sends it off at
-    the parting speed at least (:func:`.moving.parting`)."""
-    nx, ny, nn, col = wall_normal(i, t, kind, partner, aux, S, gf, wa, wb, motion)
+    (see :func:`collide_pair`).  A moving segment (``motion``): :func:`_moving_contact`."""
+    if motion is not None:
+        if kind != BOX and motion.kind[partner] != FIXED:
+            _moving_contact(i, t, partner, aux, S, invm, acc, wacc, gf, wa, wb, contact,
+                            gravity, motion)
+            return
+    nx, ny, nn, col = wall_normal(i, t, kind, partner, aux, S, gf, wa, wb, None)
     if kind == BOX:
         slot = A_BOX + aux
     else:
@@ -487,16 +527,6 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
     # Mirror the normal velocity (scaled by e), if approaching; or, at a heated wall,
     # send the disk back with a velocity drawn afresh.
     vn = S[i, VX] * nx + S[i, VY] * ny  # (|n| times the normal velocity)
-    moving = False
-    v_min = 0.0  # (|n| times the least normal speed it leaves a moving segment at)
-    vn_lab = vn
-    if motion is not None:  # (each test of motion first: numba prunes them all)
-        if kind != BOX and motion.kind[partner] != FIXED:
-            moving = True
-            us = _moving.speed(partner, t, motion)
-            vn -= us * (motion.par[partner, M_DX] * nx + motion.par[partner, M_DY] * ny)
-            gx, gy = acceleration(i, gravity)
-            v_min = _moving.parting(S[i, R], partner, gx, gy, motion) * math.sqrt(nn)
     if growth is not None:
         vn, nx, ny, nn = _closing_wall(i, t, kind == BOX, col == W_ENDS, vn, nx, ny, nn, S,
                                        wa, wb, partner, aux, gf, growth)
@@ -506,15 +536,9 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
     if heated is not None and hot:
         _heated_contact(i, kind, partner, aux, nx, ny, nn, vn, slot, col, S, invm, acc,
                         wacc, heated, uniforms)
-    elif vn < 0.0 or (motion is not None and moving and vn < v_min):
-        diss = acc[A_DISSIPATED]
-        if motion is not None and vn >= 0.0:
-            f = 0.0  # (touching, leaving too slowly: pushed to the parting speed)
-        else:
-            f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, contact)
+    elif vn < 0.0:
+        f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, contact)
         q = -f * vn / nn  # the velocity change is q n
-        if motion is not None and moving and vn + q * nn < v_min:
-            q = (v_min - vn) / nn  # (at least the parting speed: see moving.parting)
         S[i, VX] += q * nx
         S[i, VY] += q * ny
         if kind == BOX:
@@ -526,12 +550,6 @@ def collide_wall(i, t, kind, partner, aux, S, invm, acc, wacc, gf, wa, wb, conta
             wacc[partner, W_FX] -= q * nx / invm[i]
             wacc[partner, W_FY] -= q * ny / invm[i]
             wacc[partner, col] += impulse
-            if motion is not None and moving:
-                # The work of the segment: the kinetic energy the disk gained and what
-                # the contact dissipated (J.u for a contact that reflects vn).
-                work = (q * (vn_lab + 0.5 * q * nn)) / invm[i] + (acc[A_DISSIPATED] - diss)
-                wacc[partner, W_WORK] += work
-                acc[A_WORK] += work
     _note_collision(i, t, invm, contact)
     if gravity is not None:
         if kind == BOX and not hot:

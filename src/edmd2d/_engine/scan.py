@@ -35,7 +35,6 @@ from .layout import (
     BOX,
     CELL,
     DISK,
-    FIXED,
     KIND,
     NONE,
     PARTNER,
@@ -141,24 +140,18 @@ def _scan_disks(i, t, x, y, vx, vy, r, cx, cy, ox0, ox1, oy0, oy1,
 
 
 @njit(inline="always")
-def _scan_walls(t, x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall, wsx, wsy,
-                best, partner, aux, gravity, growth, motion, horizon):
+def _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall, wsx, wsy,
+                best, partner, aux, gravity, growth):
     """Earliest contact with the wall segments listed for cell ``c``, if before ``best``
     (``gx, gy``: the disk's acceleration under gravity; ``dr``: its radius's growth
-    speed under growth; a moving segment, under ``motion``, searched up to
-    ``horizon`` at most)."""
+    speed under growth)."""
     if wa.shape[0] == 0:  # no segments: spare the bucket lookup (a cache miss at large N)
         return best, partner, aux
     for k in range(wstart[c], wstart[c + 1]):
         w = wwall[k]
         shx = wsx[k] * gf[0]
         shy = wsy[k] * gf[1]
-        if motion is not None and motion.kind[w] != FIXED:
-            dtw, part = _moving.contact_time(t, x, y, vx, vy, gx, gy, r,
-                                             wa[w, 0] + shx, wa[w, 1] + shy,
-                                             wb[w, 0] + shx, wb[w, 1] + shy, w, motion,
-                                             min(best, horizon))
-        elif growth is not None:
+        if growth is not None:
             dtw, part = segment_time_grow(x, y, vx, vy, r, dr,
                                           wa[w, 0] + shx, wa[w, 1] + shy,
                                           wb[w, 0] + shx, wb[w, 1] + shy)
@@ -208,20 +201,6 @@ def _box_walls(x, y, vx, vy, gx, gy, r, dr, gi, gf, gravity, growth):
             kind = BOX
             aux = 2 + side
     return best, kind, aux
-
-
-@njit
-def _exits(x, y, vx, vy, gx, gy, cx, cy, gi, gf, gravity):
-    """The times until the centre leaves its cell ``(cx, cy)`` along x and along y, with
-    their directions (+1 or -1).  (The horizon of a moving segment's search; the
-    schedule inlines the same arithmetic.)"""
-    if gravity is None:
-        dtx, dirx = exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
-        dty, diry = exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
-    else:
-        dtx, dirx = exit_time_accel(x, vx, gx, cx, gf[2], gi[0], gi[2] != 0)
-        dty, diry = exit_time_accel(y, vy, gy, cy, gf[3], gi[1], gi[3] != 0)
-    return dtx, dirx, dty, diry
 
 
 @njit(inline="always")
@@ -335,12 +314,12 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
             partner = pd
             aux = ad
             pst = ps
-    horizon = INF
     if motion is not None:
-        dtx, _, dty, _ = _exits(x, y, vx, vy, gx, gy, cx, cy, gi, gf, gravity)
-        horizon = min(dtx, dty)
-    bw, pw, aw = _scan_walls(t, x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall,
-                             wsx, wsy, best, -1, 0, gravity, growth, motion, horizon)
+        bw, pw, aw = _moving.scan_walls(t, x, y, vx, vy, gx, gy, r, c, cx, cy, gi, gf, wa,
+                                        wb, wstart, wwall, wsx, wsy, best, gravity, motion)
+    else:
+        bw, pw, aw = _scan_walls(x, y, vx, vy, gx, gy, r, dr, c, gf, wa, wb, wstart, wwall,
+                                 wsx, wsy, best, -1, 0, gravity, growth)
     if bw < best:
         best = bw
         kind = SEGMENT

@@ -277,7 +277,7 @@ class CollisionRules(RestingRules, RoughRules):
             # energy it gained beyond the loss, since v'^2 - v^2 = (v'-uw)^2 - (v-uw)^2
             # + 2 (v' - v).uw.
             self.wall_work[partner] += -k * self.m[i] * vn * _dot(n, uw)
-            self._part(i, partner, part, p, a, n, uw)
+            self._leave_moving(i, partner, part, p, a, n, uw)
         if self.rough:
             # (The normal from the segment to the disk's centre, for the tangent.)
             if _dot(n, (p[0] - (a if part != "end" else b)[0],
@@ -290,7 +290,7 @@ class CollisionRules(RestingRules, RoughRules):
             self._lift_segment(i, part, a, b)
             self._settle(i)
 
-    def _part(self, i, partner, part, p, a, n, uw):
+    def _leave_moving(self, i, partner, part, p, a, n, uw):
         """After a contact with an oscillating segment, disk ``i`` leaves it at the
         parting speed at least, ``sqrt(2 (A omega^2 + |g|) tol)`` with ``tol = 2^-40 (r
         + A)`` (slower, the segment could catch it again before the gap opens beyond

@@ -269,7 +269,7 @@ class ReferenceSimulation(CollisionRules):
     is ``u = 0``), ``v' = v - (1 + e_w) vn n``; ``(1 - e_w^2) m vn^2 / 2`` counts as
     dissipated, and the segment does the work ``J.u`` on the disk, ``J = m (v' - v)``
     the impulse: kinetic energy changes by ``J.u`` less the loss, which
-    :attr:`wall_work` tallies.  An oscillating segment sends the disk off at its
+    ``wall_work`` tallies.  An oscillating segment sends the disk off at its
     parting speed at least, ``sqrt(2 (A omega^2 + |g|) 2^-40 (r + A))`` (the rule of
     the engine, ``_engine.moving.parting``), doing that work too.
 
@@ -652,7 +652,7 @@ class ReferenceSimulation(CollisionRules):
             velocity; a segment's part that is hit and its end points in that image,
             for a moving segment those at the contact and its velocity there, ``(part,
             a, b, u)``; ``None`` for a box wall).  The moving segments are tried
-            last, against the earliest other event (:func:`_search.next_moving_wall_event`).
+            last, against the earliest other event (``_search.next_moving_wall_event``).
         """
         shifts = self._shifts() if self.shear_rate == 0.0 else self._sheared_shifts()
         if not self.motions:

@@ -88,7 +88,7 @@ MAX_STEPS = 1 << 20
 
 
 @njit(inline="always")
-def _reach(r, w, gx, gy, motion):
+def _reach(w, gx, gy, motion):
     """The largest acceleration of a disk (``g``) relative to the oscillating
     segment ``w``: ``|g| + A omega^2``."""
     amp = motion.par[w, M_AMPLITUDE]
@@ -109,7 +109,7 @@ def parting(r, w, gx, gy, motion):
     if motion.kind[w] == LINEAR:
         return 0.0
     tol = PARTING_REL * (r + motion.par[w, M_AMPLITUDE])
-    return math.sqrt(2.0 * _reach(r, w, gx, gy, motion) * tol)
+    return math.sqrt(2.0 * _reach(w, gx, gy, motion) * tol)
 
 
 @njit(inline="always")
@@ -142,13 +142,7 @@ def scan_walls(t, x, y, vx, vy, gx, gy, r, c, cx, cy, gi, gf, wa, wb, wstart, ww
     aux = 0
     if wa.shape[0] == 0:
         return best, partner, aux
-    if gravity is None:
-        dtx, _ = _predict.exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
-        dty, _ = _predict.exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
-    else:
-        dtx, _ = _predict.exit_time_accel(x, vx, gx, cx, gf[2], gi[0], gi[2] != 0)
-        dty, _ = _predict.exit_time_accel(y, vy, gy, cy, gf[3], gi[1], gi[3] != 0)
-    horizon = min(dtx, dty)
+    horizon = -1.0  # (the cell exit, found at the first moving segment of the list)
     for k in range(wstart[c], wstart[c + 1]):
         w = wwall[k]
         shx = wsx[k] * gf[0]
@@ -158,6 +152,16 @@ def scan_walls(t, x, y, vx, vy, gx, gy, r, c, cx, cy, gi, gf, wa, wb, wstart, ww
         bx = wb[w, 0] + shx
         by = wb[w, 1] + shy
         if motion.kind[w] != FIXED:
+            if horizon < 0.0:
+                if gravity is None:
+                    dtx, _ = _predict.exit_time(x, vx, cx, gf[2], gi[0], gi[2] != 0)
+                    dty, _ = _predict.exit_time(y, vy, cy, gf[3], gi[1], gi[3] != 0)
+                else:
+                    dtx, _ = _predict.exit_time_accel(x, vx, gx, cx, gf[2], gi[0],
+                                                      gi[2] != 0)
+                    dty, _ = _predict.exit_time_accel(y, vy, gy, cy, gf[3], gi[1],
+                                                      gi[3] != 0)
+                horizon = min(dtx, dty)
             dtw, part = contact_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion,
                                      min(best, horizon))
         elif gx == 0.0 and gy == 0.0:
@@ -203,7 +207,7 @@ def _translation_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion, hor
         if dts >= horizon:
             break
         u = c if piece == 1 else 0.0
-        s = c * (min(max(ts, t0), t1) - t0)
+        s = shift(w, ts, motion)
         sx = s * dx
         sy = s * dy
         px = x + dts * (vx + 0.5 * gx * dts)
@@ -211,10 +215,11 @@ def _translation_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion, hor
         qx = vx + gx * dts - u * dx
         qy = vy + gy * dts - u * dy
         if accel:
-            dtw, part = _predict.segment_time_accel(px, py, qx, qy, gx, gy, r, ax + sx, ay + sy,
-                                           bx + sx, by + sy, horizon - dts)
+            dtw, part = _predict.segment_time_accel(px, py, qx, qy, gx, gy, r, ax + sx,
+                                                    ay + sy, bx + sx, by + sy, horizon - dts)
         else:
-            dtw, part = _predict.segment_time(px, py, qx, qy, r, ax + sx, ay + sy, bx + sx, by + sy)
+            dtw, part = _predict.segment_time(px, py, qx, qy, r, ax + sx, ay + sy, bx + sx,
+                                              by + sy)
         if dtw < INF and ts + dtw < hi:
             return dts + dtw, part
     return INF, -1
@@ -231,6 +236,13 @@ def _value(tau, c0, c1, c2, k, amp, omega, theta):
 def _out(f, length):
     """How far the foot ``f`` lies beyond the segment ``[0, length]``."""
     return max(-f, f - length, 0.0)
+
+
+@njit(inline="always")
+def _part(f, length):
+    """The part of the segment nearest a centre whose foot is ``f``: 0 the side, 1 the
+    start point, 2 the end point (as ``predict.segment_time``)."""
+    return 1 if f < 0.0 else (2 if f > length else 0)
 
 
 @njit(inline="always")
@@ -293,7 +305,7 @@ def _oscillation_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion, hor
     f2 = 0.5 * (gx * ex + gy * ey)
     mh = 2.0 * abs(h2) + abs(kh) * amp * omega * omega
     mf = 2.0 * abs(f2) + abs(kf) * amp * omega * omega
-    mq = _reach(r, w, gx, gy, motion)  # (the relative flight's largest acceleration)
+    mq = _reach(w, gx, gy, motion)  # (the relative flight's largest acceleration)
     ah = abs(kh) * amp
     af = abs(kf) * amp
     tol = TOL_REL * (r + amp)
@@ -318,8 +330,8 @@ def _oscillation_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion, hor
         rate = (ha * dh + (0.0 if oa == 0.0 else (fa if fa < 0.0 else fa - length) * df)
                 ) / dist
         if rate < 0.5 * parting(r, w, gx, gy, motion):
-            return 0.0, (0 if oa == 0.0 else (1 if fa < 0.0 else 2))
-        start = rate / _reach(r, w, gx, gy, motion)
+            return 0.0, _part(fa, length)
+        start = rate / mq
         if start >= horizon:
             return INF, -1
         ha = _value(start, h0, h1, h2, kh, amp, omega, theta)
@@ -334,7 +346,7 @@ def _oscillation_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion, hor
     while True:
         steps += 1
         if steps > MAX_STEPS:
-            return a, (0 if oa == 0.0 else (1 if fa < 0.0 else 2))
+            return a, _part(fa, length)
         width = span / 2.0**depth
         b = start + (j + 1) * width
         hb = _value(b, h0, h1, h2, kh, amp, omega, theta)
@@ -354,7 +366,8 @@ def _oscillation_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion, hor
         cleared = bh * bh + bf * bf > reach2
         if not cleared:
             ob = _out(fb, length)
-            if ha * ha + oa * oa > r2 and hb * hb + ob * ob <= r2 and (
+            falls = ha * ha + oa * oa > r2 and hb * hb + ob * ob <= r2
+            if falls and (
                     mq * width * width <= 8.0 * tol or (
                         ha * hb > 0.0 and _low(fa, fb, mf, width) >= 0.0
                         and -_low(-fa, -fb, mf, width) <= length
@@ -378,20 +391,15 @@ def _oscillation_time(t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion, hor
                         fa = fm
                     else:
                         b_ = mid
-                return a, (0 if 0.0 <= fa <= length else (1 if fa < 0.0 else 2))
+                return a, _part(fa, length)
             mid = a + 0.5 * width
             if depth < MAX_DEPTH and a < mid < b:
                 depth += 1  # look at the left half first
                 j *= 2
                 continue
             # The finest interval: a contact if the gap falls from positive to not.
-            if ha * ha + oa * oa > r2 and hb * hb + ob * ob <= r2:
-                part = 0
-                if fa < 0.0:
-                    part = 1
-                elif fa > length:
-                    part = 2
-                return a, part
+            if falls:
+                return a, _part(fa, length)
         # On to the next interval: up while this one is a right half.
         while j % 2 == 1:
             j //= 2

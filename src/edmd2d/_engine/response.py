@@ -479,7 +479,7 @@ def _moving_contact(i, t, partner, aux, S, invm, acc, wacc, gf, wa, wb, contact,
     vn = vn_lab - us * (motion.par[partner, M_DX] * nx + motion.par[partner, M_DY] * ny)
     gx, gy = acceleration(i, gravity)
     v_min = _moving.parting(S[i, R], partner, gx, gy, motion) * math.sqrt(nn)
-    if vn < 0.0 or vn < v_min:
+    if vn < v_min:  # (approaching, or leaving slower than the parting speed, >= 0)
         diss = acc[A_DISSIPATED]
         f = _wall_factor(i, t, vn * vn / nn, invm[i], acc, contact) if vn < 0.0 else 0.0
         q = -f * vn / nn  # the velocity change is q n

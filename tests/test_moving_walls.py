@@ -4,6 +4,7 @@ the brute-force reference, closed forms, the energy books, and what is refused."
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -272,3 +273,55 @@ def test_what_reads_the_segments_reads_them_where_they_are():
         sim.close_wall(2)
     sim.set_positions([[5.0, 8.8]])  # (where the side was given: free now)
     sim.close_wall(2)
+
+
+@pytest.mark.parametrize("case", ["box wall", "peg", "stacked disk", "lid"])
+def test_a_squeezed_disk_stops_the_run_naming_what_squeezes_it(case, tmp_path):
+    """A segment whose path closes a gap narrower than a disk would need unboundedly
+    many collisions: the run stops with an error naming the disk, the moving segment
+    and the body on the other side once the clock cannot advance, and the state stays
+    usable (no overlap, the books hold, a checkpoint saves and loads).  (The runs
+    start at t0 ~ 1e4: the clock stalls when the collisions' intervals, which shrink
+    as the square of their number, fall below its rounding, after some
+    ``2^26 (gap / (speed t0))^(1/2)`` of them, 1e6 here and 1e8 from t = 0.)"""
+    t0 = (2.0 * math.pi * round(3e4 / (2.0 * math.pi)) - math.pi / 2.0) / 3.0
+    box = ed.Box(10.0, 10.0, periodic=False)
+    walls = [ed.Wall((2.0, 6.0), (8.0, 6.0))]
+    pos, vel, radii, masses = [[5.0, 2.0]], [[0.3, 0.5]], [0.5], [1.0]
+    motion = ed.Translation((0.0, -1.0), 5.5)  # down to y = 0.5: room for none
+    squeezed, other = 0, "the box wall at y=0"
+    if case == "peg":
+        motion = ed.Translation((0.0, -1.0), 3.5)  # down to 2.5, the peg's top at 2
+        pos, vel = [[5.0, 3.0], [5.0, 1.0]], [[0.0, 0.5], [0.0, 0.0]]
+        radii, masses = [0.5, 1.0], [1.0, math.inf]
+        other = "disk 1"
+    elif case == "stacked disk":
+        motion = ed.Translation((0.0, -1.0), 4.5)  # down to 1.5: room for one disk
+        pos, vel = [[5.0, 3.0], [5.0, 1.0]], [[0.0, 0.5], [0.0, -0.2]]
+        radii, masses = [0.5, 0.5], [1.0, 1.0]
+        other = "disk 1"
+    elif case == "lid":
+        # a floor shaken from 2.2 to 3.8 (at its lowest at t0) under a fixed lid at 4.6
+        walls = [ed.Wall((2.0, 3.0), (8.0, 3.0)), ed.Wall((2.0, 4.6), (8.0, 4.6))]
+        motion = ed.Oscillation(0.8, 3.0)
+        pos, vel = [[5.0, 4.0]], [[0.1, 0.0]]
+        other = "walls[1]"
+    sim = ed.Simulation(pos, vel, radii=radii, masses=masses, box=box, walls=walls,
+                        wall_motions={0: motion}, time=t0)
+    books = sim.total_energy() - sim.wall_work().sum()
+    with pytest.raises(RuntimeError, match=rf"disk {squeezed} squeezed .* between the "
+                       rf"moving segment walls\[0\] and {re.escape(other)}") as err:
+        sim.advance(until=t0 + 20.0)
+    assert "Stop the segment short" in str(err.value)
+    assert sim.time < t0 + 20.0
+    # Positions are exact to what the disks cover in a rounding of the clock, fast as
+    # they are by then: no overlap beyond that, and the books hold to rounding of the
+    # energy the segment has pumped in.
+    slack = 16 * np.hypot(*sim.velocities.T).max() * np.spacing(sim.time)
+    floor = sim.wall_positions[0, 0, 1]
+    y, r = sim.positions[:, 1], sim.radii
+    assert np.all(y + r <= floor + slack) or np.all(y - r >= floor - slack)
+    assert abs(sim.total_energy() - sim.wall_work().sum() - books) < 1e-9 * sim.total_energy()
+    path = tmp_path / "squeezed.npz"
+    ed.checkpoint.save(sim, path)
+    np.testing.assert_array_equal(ed.checkpoint.load(path).positions, sim.positions)

@@ -14,7 +14,7 @@ import time as _time
 
 import numpy as np
 
-from . import _balance, _checks, _impacts
+from . import _balance, _checks, _gaps, _impacts
 from . import models as _models
 from . import progress as _progress
 from ._checks import OVERLAP_TOL
@@ -1425,6 +1425,44 @@ class EngineState:
                 f"{v * extent:.3g}, must be at most {MAX_LENGTH:g} (the contact times "
                 "square it).  Use smaller speeds (a slower unit of time).")
 
+    def squeezing(self, i: int) -> tuple[list[int], list[str], list[int]]:
+        """What internal disk ``i`` touches now, split into the moving wall segments and
+        the rest (named as in errors: other segments, box walls, disks in the user's
+        numbering), and the internal indices of the disks it touches; nothing without
+        :class:`~edmd2d.physics.MovingWalls`.
+
+        "Touches": within ``1e-6`` of the contact distance, or of the distance the
+        disk covers in 16 roundings of the clock (a squeezed disk, fast by then,
+        bounces across such a gap in an instant the clock cannot resolve)."""
+        moving = self.families.get("moving_walls")
+        if moving is None:
+            return [], [], []
+        pos = self.positions()
+        r = float(self.S[i, _layout.R])
+        speed = float(np.hypot(*self.velocities()[i]))
+        slack = max(1e-6 * r, 16.0 * speed * float(np.spacing(max(abs(self.time), 1.0))))
+        reach = r + slack
+        starts, ends = self.wall_ends()
+        pushers, others = [], []
+        for k in np.flatnonzero(~self.wall_open).tolist():
+            if _gaps._segment_distance(pos[i:i + 1], starts[k], ends[k], self.box)[0] <= reach:
+                if moving.kind[k] != _layout.FIXED:
+                    pushers.append(k)
+                else:
+                    others.append(f"walls[{k}]")
+        for side, name in enumerate(BOX_WALL_EQUATIONS):
+            axis, far = divmod(side, 2)
+            if not self.box.periodic[axis]:
+                gap = (self.box.size[axis] - pos[i, axis]) if far else pos[i, axis]
+                if gap <= reach:
+                    others.append(f"the box wall at {name}")
+        d = _gaps._min_image(pos - pos[i], self.box)
+        near = np.hypot(d[:, 0], d[:, 1]) <= self.S[:, _layout.R] + reach
+        near[i] = False
+        touching = np.flatnonzero(near).tolist()
+        others += [f"disk {int(self.order[j])}" for j in touching]
+        return pushers, others, touching
+
     def wedged_limit(self) -> int:
         """The events in a row at one time after which disks count as wedged."""
         return max(_WEDGED_EVENTS_PER_DISK * len(self), _WEDGED_EVENTS_MIN)
@@ -1478,6 +1516,28 @@ class EngineState:
             other = (f"disk {int(self.order[j])}" if kind == _layout.DISK else
                      where if kind in (_layout.SEGMENT, _layout.BOX) else
                      "a grid cell's edge" if kind == _layout.CROSS else "a redraw")
+            # (The disk squeezed by a moving segment may be the next event's, or one
+            # it presses on through a chain of touching disks.)
+            queue, seen = [i], {i}
+            pushers, others = [], []
+            while queue and len(seen) <= 64:
+                c = queue.pop(0)
+                pushers, others, touching = self.squeezing(c)
+                if pushers and others:
+                    break
+                queue += [t for t in touching if t not in seen]
+                seen.update(touching)
+            if pushers and others:
+                names = " and ".join(f"walls[{k}]" for k in pushers)
+                return RuntimeError(
+                    f"disk {int(self.order[c])} squeezed at t={self.time} between the "
+                    "moving segment "
+                    f"{names} and {' and '.join(others)}: the segment's path closes a gap "
+                    "narrower than the disk, which would need unboundedly many "
+                    f"collisions ({self.wedged_limit()} or more in a row at this one "
+                    "time).  Stop the segment short of it (a shorter distance or "
+                    f"amplitude) or give the disk room to leave.  {stopped}"
+                )
             return RuntimeError(
                 f"disks wedged at t={self.time}: {self.wedged_limit()} or more events in "
                 f"a row at this one time, the next of disk {user_i} with {other}, and the "

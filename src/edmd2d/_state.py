@@ -201,8 +201,8 @@ class EngineState:
         self.build_grid(pos, self.grid_diameter(2.0 * float(rad.max())), cell_size)
         with about("positions"):
             self.check_overlaps(pos, rad)
-        _layout.support_view(state)[:] = _checks.resting(box, self.closed_walls(), gravity, pos,
-                                                         vel, rad, mass, model)
+        _layout.support_view(state)[:] = _checks.resting(box, self.walls_holding_still(), gravity,
+                                                         pos, vel, rad, mass, model)
         self.species = species
         self.model = model
         self.families = families
@@ -608,13 +608,24 @@ class EngineState:
         shift = moving.shifts(self.time if t is None else t)
         return self.wa + shift, self.wb + shift
 
-    def closed_walls(self) -> tuple:
+    def closed_walls(self, oscillating: bool = True) -> tuple:
         """The wall segments that are not open (the bodies a disk can meet), where they
-        are now."""
+        are now; without the oscillating ones for ``oscillating=False``."""
         walls = self.walls
-        if "moving_walls" in self.families:
+        skip = np.array(self.wall_open, bool)
+        moving = self.families.get("moving_walls")
+        if moving is not None:
             walls = tuple(Wall(a, b) for a, b in zip(*self.wall_ends()))
-        return tuple(w for w, is_open in zip(walls, self.wall_open) if not is_open)
+            if not oscillating:
+                skip |= moving.kind == _layout.SINE
+        return tuple(w for w, out in zip(walls, skip) if not out)
+
+    def walls_holding_still(self) -> tuple:
+        """The segments on which a disk at rest, pressed on by gravity, would bounce
+        without end at one instant (see :func:`edmd2d._checks.resting`): the closed
+        ones except those that oscillate, which throw a disk off at the parting speed
+        at least (``_engine/moving.py``)."""
+        return self.closed_walls(oscillating=False)
 
     def set_wall_open(self, k: int, is_open: bool) -> None:
         """Open wall segment ``k`` (no disk meets it any more; every disk at rest

@@ -728,8 +728,8 @@ class Simulation(SimulationBase):
         if state.rest_frozen is not None:
             at_rest = self.resting
             vel[at_rest] = state.to_user(state.rest_frozen)[at_rest]
-        rest = _checks.resting(state.box, state.closed_walls(), g, self.positions, vel, self.radii,
-                               self.masses, state.model, "gravity")
+        rest = _checks.resting(state.box, state.walls_holding_still(), g, self.positions, vel,
+                               self.radii, self.masses, state.model, "gravity")
         families = dict(state.families)
         if "resting" in families:
             old = families["resting"]
@@ -887,7 +887,7 @@ class Simulation(SimulationBase):
                    time=self._state.time, **sheared)
         state = self._state
         pos = _checks.check_in_box(state.box, pos, self.radii)  # (x = width becomes 0 if periodic)
-        state.place(pos, _checks.resting(state.box, state.closed_walls(), state.gravity, pos,
+        state.place(pos, _checks.resting(state.box, state.walls_holding_still(), state.gravity, pos,
                                          self.velocities, self.radii, self.masses,
                                          state.model))
 
@@ -922,9 +922,10 @@ class Simulation(SimulationBase):
         vel = as_float_array("velocities", velocities, (len(self), 2))
         state = self._state
         _checks.check_room(state.box, vel, self.radii)
-        state.set_velocities(vel, _checks.resting(state.box, state.closed_walls(), state.gravity,
-                                                  self.positions, vel, self.radii,
-                                                  self.masses, state.model, "velocities"))
+        state.set_velocities(vel, _checks.resting(state.box, state.walls_holding_still(),
+                                                  state.gravity, self.positions, vel,
+                                                  self.radii, self.masses, state.model,
+                                                  "velocities"))
 
     def measure(self, duration: float, **kwargs: Any) -> _measurements.Measurement:
         """Run for ``duration`` and return the measurements over that window.

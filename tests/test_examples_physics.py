@@ -48,6 +48,17 @@ def test_example_writes_its_figure(name, small, tmp_path, capsys):
     assert "wrote" in capsys.readouterr().out
 
 
+def test_shaken_bed_example_writes_its_animation(tmp_path, capsys):
+    module = load("shaken_bed")
+    module.N, module.DURATION, module.TARGETS, module.RELAXATIONS = 100, 30.0, (70.0,), 6.0
+    out = tmp_path / "shaken_bed.gif"
+    numbers = module.main(out)
+    assert out.stat().st_size > 10_000 and out.with_suffix(".png").stat().st_size > 10_000
+    assert "leading order" in capsys.readouterr().out
+    # (a short run: within 25 % of kinetic theory, the full one within a few %)
+    assert numbers["measured"][0] == pytest.approx(numbers["theory"][0], rel=0.25)
+
+
 def test_eos_table_runs(capsys):
     module = load("eos_table")
     module.table(200, 20_000, etas=(0.3,))

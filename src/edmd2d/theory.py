@@ -69,6 +69,25 @@ The formulas and where they come from:
   / n [4 pi (D + nu) t]^(-d/2)``, in 2D ``kT / (8 pi m n (D + nu) t)``; in a periodic
   box the sum over its wave vectors cuts it off at ``t ~ L^2 / (4 pi^2 (D + nu))``,
   so that ``D`` grows as ``kT / (8 pi (eta + m n D)) ln N`` at fixed density.
+- A dilute bed of nearly elastic disks on a floor vibrating as ``A sin(omega t)`` (the
+  regime of V. Kumaran, J. Fluid Mech. 364, 163 (1998): dissipation small, many
+  collisions per flight, ``A`` small against the bed's height ``kT / (m g)``): to
+  leading order the velocities are Maxwellian at one temperature and the density is
+  barometric.  A disk arriving at the floor with normal speed ``c`` meets it, at a
+  rate proportional to ``c + U``, moving at ``U = A omega cos(phase)``, and leaves
+  with ``c + 2 U``; averaged over the phase, ``(c + U) 2 m (c U + U^2)`` is ``4 m c
+  <U^2>``, and over the flux of a Maxwellian the floor delivers ``S = 4 n_0 m <U^2>
+  sqrt(kT / (2 pi m))`` per unit length (``n_0`` the density at the floor, ``<U^2> =
+  (A omega)^2 / 2``).  Collisions with normal relative speed ``g_n`` lose ``(1 -
+  e^2) m g_n^2 / 4``; at the rate ``n^2 sigma sqrt(pi kT / m)`` per unit area (half
+  the collision rate above times ``n``, for ``g(sigma) = 1``) with ``<g_n^2> = 4 kT /
+  m`` per collision, a unit area loses ``(1 - e^2) n^2 sigma kT sqrt(pi kT / m)``
+  (the rate of Haff's law); integrated over the barometric profile, a unit length of
+  floor loses ``(1 - e^2) (N / L) sigma n_0 sqrt(pi / m) kT^(3/2) / 2``.  The two
+  balance at ``kT = (2 sqrt(2) / pi) m (A omega)^2 / epsilon`` with ``epsilon = (1 -
+  e^2) N sigma / L``: the temperature grows as the square of the floor's velocity
+  amplitude, does not depend on gravity, and its corrections are of relative order
+  ``A omega / sqrt(kT / m) ~ epsilon^(1/2)`` (docs/moving-walls.md measures them).
 """
 
 from __future__ import annotations
@@ -92,6 +111,9 @@ __all__ = [
     "enskog_collision_rate",
     "homogeneous_cooling",
     "haff_temperature",
+    "collisional_dissipation",
+    "vibrating_wall_power",
+    "vibrated_bed_temperature",
     "number_density",
     "mean_speed",
     "SONINE_VISCOSITY",
@@ -916,6 +938,142 @@ def haff_temperature(restitution: float, time: ArrayLike,
     e = _restitution(restitution)
     omega = as_positive_float("collision_rate", collision_rate)
     return _out(1.0 / (1.0 + (1.0 - e * e) * omega * np.asarray(time, dtype=float) / 4.0) ** 2)
+
+
+def collisional_dissipation(n: ArrayLike, restitution: float, temperature: ArrayLike = 1.0,
+                            diameter: float = 1.0, mass: float = 1.0,
+                            g_contact: ArrayLike = 1.0) -> float | np.ndarray:
+    """Energy lost in collisions per unit area and time by a gas of inelastic disks
+    with Maxwellian velocities, ``(1 - e^2) n^2 sigma g(sigma) kT sqrt(pi kT / m)``.
+
+    A collision with normal relative speed ``g_n`` loses ``(1 - e^2) m g_n^2 / 4``
+    (reduced mass ``m / 2``); weighted by the rate at which they happen, collisions
+    have ``<g_n^2> = 4 kT / m``, and a unit area has ``n omega / 2`` of them per unit
+    time (:func:`enskog_collision_rate`).  The same rate gives Haff's law
+    (:func:`haff_temperature`).
+
+    Parameters
+    ----------
+    n : float or array_like
+        Number density.
+    restitution : float
+        ``e`` in (0, 1].
+    temperature : float or array_like, default 1.0
+        ``kT`` (the granular temperature, ``m <v_x^2>``).
+    diameter, mass : float, default 1.0
+    g_contact : float or array_like, default 1.0
+        The pair distribution at contact (1 in a dilute gas).
+
+    Returns
+    -------
+    float or ndarray
+        Energy per unit area and unit time.
+
+    Examples
+    --------
+    >>> round(collisional_dissipation(0.02, 0.9, 4.0), 6)
+    0.001078
+    """
+    e = _restitution(restitution)
+    sigma = as_positive_float("diameter", diameter)
+    m = as_positive_float("mass", mass)
+    kt = _positive_array("temperature", temperature)
+    return _out((1.0 - e * e) * np.asarray(n, dtype=float) ** 2 * sigma
+                * np.asarray(g_contact, dtype=float) * kt * np.sqrt(math.pi * kt / m))
+
+
+def vibrating_wall_power(n: ArrayLike, amplitude: float, omega: float,
+                         temperature: ArrayLike = 1.0, mass: float = 1.0
+                         ) -> float | np.ndarray:
+    """Mean power that an elastic wall vibrating as ``A sin(omega t)`` along its normal
+    gives a Maxwellian gas, per unit length of wall, to leading order in ``A omega /
+    sqrt(kT / m)``: ``S = 4 n m <U^2> sqrt(kT / (2 pi m)) = n (A omega)^2 sqrt(2 m kT
+    / pi)``.
+
+    Derived in the module notes; ``n`` is the density of the gas at the wall and ``A``
+    small against the distances over which it changes.
+
+    Parameters
+    ----------
+    n : float or array_like
+        Number density at the wall.
+    amplitude, omega : float
+        ``A`` and ``omega`` (> 0).
+    temperature : float or array_like, default 1.0
+        ``kT`` of the gas at the wall.
+    mass : float, default 1.0
+
+    Returns
+    -------
+    float or ndarray
+        Energy per unit length of wall and unit time.
+
+    Examples
+    --------
+    >>> round(vibrating_wall_power(0.02, 0.5, 5.0, 100.0), 4)
+    0.9974
+    """
+    a = as_positive_float("amplitude", amplitude)
+    w = as_positive_float("omega", omega)
+    m = as_positive_float("mass", mass)
+    kt = _positive_array("temperature", temperature)
+    return _out(np.asarray(n, dtype=float) * (a * w) ** 2 * np.sqrt(2.0 * m * kt / math.pi))
+
+
+def vibrated_bed_temperature(amplitude: float, omega: float, restitution: float,
+                             disks_per_length: float, diameter: float = 1.0,
+                             mass: float = 1.0) -> float:
+    """Granular temperature of a dilute, nearly elastic bed on an elastic floor
+    vibrating as ``A sin(omega t)``, to leading order (Kumaran's regime):
+    ``kT = (2 sqrt(2) / pi) m (A omega)^2 / epsilon``, ``epsilon = (1 - e^2) N sigma /
+    L``.
+
+    The floor's power (:func:`vibrating_wall_power`) balances the collisions' losses
+    (:func:`collisional_dissipation`) integrated over the barometric profile (module
+    notes).  It holds where ``epsilon`` is small (the first corrections are of
+    relative order ``epsilon^(1/2)``), the disks collide many times in a flight
+    (``N sigma / L`` well above 1), the bed is dilute (``(N / L) sigma^2 m g / kT``
+    small) and the floor's amplitude is small against the bed's height ``kT / (m
+    g)``.  Gravity drops out.
+
+    Parameters
+    ----------
+    amplitude, omega : float
+        The floor's amplitude ``A`` and angular frequency ``omega`` (> 0).
+    restitution : float
+        ``e`` of disk-disk collisions, in (0, 1).
+    disks_per_length : float
+        ``N / L``, disks per unit length of floor (> 0).
+    diameter, mass : float, default 1.0
+
+    Returns
+    -------
+    float
+        ``kT`` (``m <v_x^2> = m <v_y^2>``).
+
+    Examples
+    --------
+    >>> round(vibrated_bed_temperature(0.5, 5.0, 0.99, 4.0), 3)
+    70.691
+    """
+    e = _restitution(restitution)
+    if e == 1.0:
+        raise ValueError("restitution must be below 1: elastic disks never reach a "
+                         "steady temperature on a vibrating floor")
+    a = as_positive_float("amplitude", amplitude)
+    w = as_positive_float("omega", omega)
+    per_length = as_positive_float("disks_per_length", disks_per_length)
+    sigma = as_positive_float("diameter", diameter)
+    m = as_positive_float("mass", mass)
+    epsilon = (1.0 - e * e) * per_length * sigma
+    return 2.0 * math.sqrt(2.0) / math.pi * m * (a * w) ** 2 / epsilon
+
+
+def _positive_array(name: str, value: ArrayLike) -> np.ndarray:
+    arr = np.asarray(value, dtype=float)
+    if not np.all(arr > 0.0):
+        raise ValueError(f"{name} must be > 0, got {value!r}")
+    return arr
 
 
 def _restitution(e) -> float:

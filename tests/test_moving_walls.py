@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 
 import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import random_system, segment_distance
+from conftest import random_system, seed_of, segment_distance
 from edmd2d.reference import ReferenceSimulation
 
 
@@ -345,3 +346,66 @@ def test_a_squeezed_disk_stops_the_run_naming_what_squeezes_it(case, tmp_path):
     path = tmp_path / "squeezed.npz"
     ed.checkpoint.save(sim, path)
     np.testing.assert_array_equal(ed.checkpoint.load(path).positions, sim.positions)
+
+
+def _wide_moving_system(seed):
+    """A mixture, a few disks four to six times wider than the rest, between a piston
+    coming down from the top and a shaken segment near the bottom, on the wide grid;
+    walled, or periodic along x."""
+    rng = np.random.default_rng(seed_of(990) + seed)
+    n, big = int(rng.integers(30, 50)), int(rng.integers(1, 4))
+    rad = np.full(n, 0.5)
+    rad[:big] = 0.5 * float(rng.choice([4.0, 6.0])) * rng.uniform(0.8, 1.0, big)
+    periodic = (bool(seed % 2), False)
+    probe = ed.random_gas(n, 0.25, radii=rad, periodic=periodic, seed=seed)
+    w, h = probe.box.width, probe.box.height
+    walls = [ed.Wall((0.05 * w, 0.9 * h), (0.95 * w, 0.9 * h)),
+             ed.Wall((0.1 * w, 0.12 * h), (0.9 * w, 0.1 * h))]
+    shaker = ed.Oscillation(0.03 * h, float(rng.uniform(2.0, 6.0)),
+                            phase=float(rng.uniform(0, 2 * math.pi)))
+    piston = ed.Translation((0.0, -float(rng.uniform(0.5, 1.5))), 0.25 * h)
+    at_start = [walls[0], ed.Wall(np.add(walls[1].start, shaker.shift(0.0)),
+                                  np.add(walls[1].end, shaker.shift(0.0)))]
+    # (the path of each segment kept clear of the disks at the start)
+    clear = [ed.Wall((0.05 * w, 0.9 * h + 0.5), (0.95 * w, 0.9 * h + 0.5)),
+             ed.Wall((0.1 * w, 0.12 * h + 0.06 * h), (0.9 * w, 0.1 * h + 0.06 * h))]
+    for attempt in range(20):  # (until a wide disk is left in the box)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # (disks that the segments cross left out)
+            gas = ed.random_gas(n, 0.25, radii=rad, periodic=periodic,
+                                seed=100 * attempt + seed, walls=at_start + clear)
+        if gas.radii.max() > 0.5:
+            break
+    return gas, walls, {0: piston, 1: shaker}
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_wide_disks_meet_moving_walls_as_the_reference(seed):
+    """On the wide grid a wide disk searches a moving segment up to its footprint's
+    next change, and predicts afresh there: event for event against the oracle, with
+    gravity every other seed."""
+    gas, walls, motions = _wide_moving_system(seed)
+    options = {} if seed % 2 else dict(gravity=(0.0, -1.0))
+    pos, vel, rad = gas.positions, gas.velocities, gas.radii
+    sim = ed.Simulation(pos, vel, rad, box=gas.box, walls=walls, wall_motions=motions,
+                        grid="wide", **options)
+    assert sim._state.wide is not None
+    sim._record_events(100_000)
+    ref = ReferenceSimulation(pos, vel, rad, box=gas.box, walls=walls,
+                              wall_motions=motions, **options)
+    sim.advance(until=2.0)
+    ref.advance(until=2.0)
+    _assert_same_run(sim, ref, gas.box, atol=1e-8)
+    wide = set(np.flatnonzero(rad > 0.5).tolist())
+    WIDE_HITS[seed] = {j for _, k, i, j in sim._recorded_events() if k == "wall" and i in wide}
+
+
+WIDE_HITS: dict = {}
+
+
+def test_wide_disks_do_meet_the_moving_walls():
+    """The systems above exercise both moving segments with wide disks."""
+    for seed in range(8):
+        if seed not in WIDE_HITS:
+            test_wide_disks_meet_moving_walls_as_the_reference(seed)
+    assert {0, 1} <= set().union(*WIDE_HITS.values())

@@ -408,7 +408,7 @@ class EngineState:
         (:mod:`._engine.wide`); ``None`` for the uniform grid (a ``cell_size`` given,
         shear, disks at rest, or radii too alike for it to pay)."""
         if (self.grid_mode == "uniform" or cell_size is not None or self.shear is not None
-                or "resting" in self.families or "moving_walls" in self.families):
+                or "resting" in self.families):
             return None
         box = self.box
         narrow = _wide.choose(radii, box.width, box.height, box.periodic, _CELL_MARGIN,
@@ -481,7 +481,8 @@ class EngineState:
         disk reaches beyond the cell whose segments the grid's check reads)."""
         assert self.wide is not None
         wide = self.wide.disk
-        a, b = self.wa[None, :, :], self.wb[None, :, :]
+        starts, ends = self.wall_ends()
+        a, b = starts[None, :, :], ends[None, :, :]
         shifts = [(sx, sy) for sx in ((-1, 0, 1) if self.box.periodic[0] else (0,))
                   for sy in ((-1, 0, 1) if self.box.periodic[1] else (0,))]
         for sx, sy in shifts:
@@ -584,9 +585,6 @@ class EngineState:
                 raise ValueError("moving wall segments do not hold disks at rest (yet): "
                                  "under gravity with an inelastic model, give "
                                  "resting=False")
-            if self.grid_mode == "wide":
-                raise ValueError("moving wall segments keep the uniform grid: give "
-                                 "grid='auto' or 'uniform'")
             if self.model is not None:
                 hot = np.flatnonzero((self.model.wall_kt[4:] > 0.0)
                                      & (moving.kind != _layout.FIXED))

@@ -35,6 +35,7 @@ from .layout import (
     BOX,
     CELL,
     DISK,
+    FIXED,
     KIND,
     NONE,
     PARTNER,
@@ -247,7 +248,7 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
     """
     if wide is not None and wide.index[i] >= 0:
         return _predict_wide(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt, wa,
-                             wb, wstart, wwall, wsx, wsy, gravity, growth, wide)
+                             wb, wstart, wwall, wsx, wsy, gravity, growth, wide, motion)
     if gravity is not None and gravity.support[i] & RESTING:
         # At rest: no event of its own (flying disks hold their contacts with it).
         tcand[i] = INF
@@ -378,10 +379,12 @@ def _wide_pair(i, j, t, x, y, vx, vy, gxi, gyi, r, sx, sy, S, gf, gravity, growt
 @njit
 def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, gi, gf,
                     head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner,
-                    aux, pst, gravity, growth):
+                    aux, pst, gravity, growth, motion, horizon):
     """Earliest contact of wide disk ``i`` (index ``k``, stored radius ``r``) with the
     narrow disks, the wide disks and the wall segments listed in the unwrapped cells
-    ``[u0, u1] x [v0, v1]`` of its footprint."""
+    ``[u0, u1] x [v0, v1]`` of its footprint; a moving segment (``motion``) searched up
+    to ``horizon`` at the latest, the footprint's next change (a full prediction
+    then takes the search up again)."""
     f = growth_factor(t, growth)
     dr = 0.0 if growth is None else r * growth.rate
     ncx = gi[0]
@@ -436,7 +439,11 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
                     ay = wa[w, 1] + qy * gf[1]
                     bx = wb[w, 0] + qx * gf[0]
                     by = wb[w, 1] + qy * gf[1]
-                    if growth is not None:
+                    if motion is not None and motion.kind[w] != FIXED:
+                        dtw, part = _moving.contact_time(t, x, y, vx, vy, gx, gy, r, ax, ay,
+                                                         bx, by, w, motion,
+                                                         min(best, horizon))
+                    elif growth is not None:
                         dtw, part = segment_time_grow(x, y, vx, vy, r * f, dr, ax, ay, bx, by)
                     elif gravity is None or (gx == 0.0 and gy == 0.0):
                         dtw, part = segment_time(x, y, vx, vy, r, ax, ay, bx, by)
@@ -461,13 +468,15 @@ def _edge_time(e, v, a, c, side, ncell, periodic, gravity):
 
 @njit
 def _predict_wide(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall,
-            wsx, wsy, gravity, growth, wide):
+                  wsx, wsy, gravity, growth, wide, motion):
     """:func:`predict` for a wide disk (:mod:`.wide`): its next event from time ``t``.
 
     ``code`` -1: a full prediction (box walls and every cell of its footprint).
     Otherwise the crossing ``code`` (``4 * what + direction``) has just grown its
     footprint by the column or row it names, or shrunk it: if its kept candidate is
-    still valid only the new cells are scanned against it (none for a shrink)."""
+    still valid only the new cells are scanned against it (none for a shrink).  With
+    moving segments (``motion``) every prediction is full: the search for a moving
+    segment stops at the footprint's next change, and takes up again from there."""
     k = wide.index[i]
     if gravity is None:
         vx = S[i, VX]
@@ -479,50 +488,6 @@ def _predict_wide(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wst
         gx, gy = acceleration(i, gravity)
     x, y = position_at(i, t, S, gravity)
     r = S[i, R]
-    x0 = wide.rect[k, 0]
-    x1 = wide.rect[k, 1]
-    y0 = wide.rect[k, 2]
-    y1 = wide.rect[k, 3]
-    partial = code >= 0 and code < 8 and not (
-        kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
-    kind = NONE
-    partner = -1
-    aux = 0
-    pst = 0
-    if partial:
-        best = tcand[i] - t
-        what = code >> 2
-        direction = code & 3
-        # (Grown: low edge moving down, or high edge moving up.)
-        grown = (what == LOW and (direction & 1) == 1) or (what == HIGH and
-                                                         (direction & 1) == 0)
-        if grown:
-            if direction < 2:
-                u = x0 if what == LOW else x1
-                best, kind, partner, aux, pst = _scan_footprint(
-                    i, k, t, x, y, vx, vy, gx, gy, r, u, u, y0, y1, S, stamp, gi, gf,
-                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
-                    partner, aux, pst, gravity, growth)
-            else:
-                v = y0 if what == LOW else y1
-                best, kind, partner, aux, pst = _scan_footprint(
-                    i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, v, v, S, stamp, gi, gf,
-                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
-                    partner, aux, pst, gravity, growth)
-    else:
-        dr = 0.0 if growth is None else r * growth.rate
-        best, kind, aux = _box_walls(x, y, vx, vy, gx, gy, r * growth_factor(t, growth), dr,
-                                     gi, gf, gravity, growth)
-        best, kind, partner, aux, pst = _scan_footprint(
-            i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, y0, y1, S, stamp, gi, gf, head, nxt,
-            wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner, aux, pst, gravity,
-            growth)
-    if not partial or kind != NONE:
-        tcand[i] = t + best
-        E[i, KIND] = kind
-        E[i, PARTNER] = partner
-        E[i, AUX] = aux
-        E[i, PSTAMP] = pst
     # The next change of the footprint (or wrap of the centre).  Under growth an edge
     # moves at the velocity plus or minus the radius's growth speed.
     reach = r * growth_factor(t, growth) + wide.half
@@ -552,5 +517,49 @@ def _predict_wide(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wst
             if dt < first:
                 first = dt
                 sched = 4 * what + 2 * axis + (0 if sign > 0 else 1)
+    x0 = wide.rect[k, 0]
+    x1 = wide.rect[k, 1]
+    y0 = wide.rect[k, 2]
+    y1 = wide.rect[k, 3]
+    partial = motion is None and code >= 0 and code < 8 and not (
+        kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
+    kind = NONE
+    partner = -1
+    aux = 0
+    pst = 0
+    if partial:
+        best = tcand[i] - t
+        what = code >> 2
+        direction = code & 3
+        # (Grown: low edge moving down, or high edge moving up.)
+        grown = (what == LOW and (direction & 1) == 1) or (what == HIGH and
+                                                         (direction & 1) == 0)
+        if grown:
+            if direction < 2:
+                u = x0 if what == LOW else x1
+                best, kind, partner, aux, pst = _scan_footprint(
+                    i, k, t, x, y, vx, vy, gx, gy, r, u, u, y0, y1, S, stamp, gi, gf,
+                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
+                    partner, aux, pst, gravity, growth, motion, first)
+            else:
+                v = y0 if what == LOW else y1
+                best, kind, partner, aux, pst = _scan_footprint(
+                    i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, v, v, S, stamp, gi, gf,
+                    head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
+                    partner, aux, pst, gravity, growth, motion, first)
+    else:
+        dr = 0.0 if growth is None else r * growth.rate
+        best, kind, aux = _box_walls(x, y, vx, vy, gx, gy, r * growth_factor(t, growth), dr,
+                                     gi, gf, gravity, growth)
+        best, kind, partner, aux, pst = _scan_footprint(
+            i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, y0, y1, S, stamp, gi, gf, head, nxt,
+            wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner, aux, pst, gravity,
+            growth, motion, first)
+    if not partial or kind != NONE:
+        tcand[i] = t + best
+        E[i, KIND] = kind
+        E[i, PARTNER] = partner
+        E[i, AUX] = aux
+        E[i, PSTAMP] = pst
     E[i, KIND] = pack_kind(kind_of(E[i, KIND]), sched)
     return min(tcand[i], t + first)

@@ -448,3 +448,27 @@ def test_collisional_dissipation_is_the_rate_of_haffs_law():
     omega = theory.enskog_collision_rate(n, 1.0, g, kt)
     assert theory.collisional_dissipation(n, e, kt, g_contact=g) / n == pytest.approx(
         (1 - e * e) * kt * omega / 2.0, rel=1e-14)
+
+
+def test_the_piston_shock_of_an_ideal_gas_is_the_classic_one():
+    """With ``Z = 1`` (``gamma = 2``): ``u / c_1 = (2 / 3)(M - 1 / M)``, density ratio
+    ``3 M^2 / (M^2 + 2)`` and temperature ratio ``(4 M^2 - 1)(M^2 + 2) / (9 M^2)``
+    (the textbook forms for ``gamma = 2``); the hard-disk fluid's shock is faster and
+    compresses less; and a piston so fast that the fluid would pass the equation of
+    state's range is refused."""
+    for u in (0.3, 1.0, 5.0):
+        d, eta2, t2 = theory.piston_shock(u, 0.02, temperature=1.5, mass=2.0,
+                                          z=lambda eta: 1.0)
+        c1 = math.sqrt(2.0 * 1.5 / 2.0)
+        mach = d / c1
+        assert u / c1 == pytest.approx(2.0 / 3.0 * (mach - 1.0 / mach), rel=1e-12)
+        assert eta2 / 0.02 == pytest.approx(3 * mach**2 / (mach**2 + 2), rel=1e-12)
+        assert t2 / 1.5 == pytest.approx((4 * mach**2 - 1) * (mach**2 + 2) / (9 * mach**2),
+                                         rel=1e-12)
+    ideal = theory.piston_shock(2.0, 0.2, z=lambda eta: 1.0)
+    dense = theory.piston_shock(2.0, 0.2)
+    assert dense[0] > ideal[0] and dense[1] < ideal[1]
+    with pytest.raises(ValueError, match="beyond"):
+        theory.piston_shock(50.0, 0.6)
+    with pytest.raises(ValueError, match="speed"):
+        theory.piston_shock(-1.0, 0.2)

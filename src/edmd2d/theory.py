@@ -107,6 +107,7 @@ __all__ = [
     "virial_z",
     "kolafa_rottner_z",
     "adiabatic_temperature",
+    "piston_shock",
     "contact_value",
     "enskog_collision_rate",
     "homogeneous_cooling",
@@ -350,6 +351,86 @@ def adiabatic_temperature(eta_start: float, eta_end: float, temperature: float =
     integral, _ = quad(lambda eta: float(z(eta)) / eta, float(eta_start), float(eta_end),
                         epsabs=0.0, epsrel=1e-12)
     return float(temperature) * math.exp(integral)
+
+
+def piston_shock(speed: float, eta: float, temperature: float = 1.0, mass: float = 1.0,
+                 diameter: float = 1.0, z=None) -> tuple[float, float, float]:
+    """The shock wave that a piston driven at a constant ``speed`` into a hard-disk
+    fluid at rest sends ahead of it (Rankine and Hugoniot's jump conditions with the
+    fluid's equation of state): the shock's speed, and the packing fraction and
+    temperature of the fluid between it and the piston.
+
+    Behind the shock the fluid moves with the piston, ``u``; the shock runs at ``D``
+    into the fluid at rest (density ``n_1``, pressure ``p_1``, temperature ``T_1``).
+    Across it mass, momentum and energy are conserved: ``n_1 D = n_2 (D - u)``, ``p_2 -
+    p_1 = m n_1 D u`` and ``n_1 D (e_2 - e_1 + m u^2 / 2) = p_2 u``, with ``e = kT`` per
+    disk (the energy of hard disks is all kinetic) and ``p = n kT Z(eta)``.  For an
+    ideal gas (``Z = 1``, ``gamma = 2`` in 2D) they give the classic ``u / c_1 = (2 /
+    (gamma + 1)) (M - 1 / M)`` with ``M = D / c_1``, ``c_1 = sqrt(gamma kT_1 / m)``, and a
+    density ratio of at most 3.  The piston's work beyond the adiabat
+    (:func:`adiabatic_temperature`) is what the shock dissipates.
+
+    Parameters
+    ----------
+    speed : float
+        The piston's speed ``u`` (> 0) towards the fluid.
+    eta : float
+        The packing fraction ahead of the shock.
+    temperature, mass, diameter : float, default 1.0
+        ``kT_1``, ``m``, ``sigma``.
+    z : callable, optional
+        The equation of state ``Z(eta)``; default :func:`kolafa_rottner_z`, whose
+        range (``eta <= 0.7069``) bounds the shock's strength.
+
+    Returns
+    -------
+    (float, float, float)
+        ``D``, ``eta_2`` and ``kT_2``.
+
+    Examples
+    --------
+    >>> d, eta2, t2 = piston_shock(2.0, 0.01, z=lambda eta: 1.0)  # an ideal gas
+    >>> m = d / 2.0 ** 0.5
+    >>> round(2.0 / 3.0 * (m - 1.0 / m) * 2.0 ** 0.5, 12), round(eta2 / 0.01, 4)
+    (2.0, 2.2808)
+    """
+    # (scipy.optimize only here: importing it with the package costs time.)
+    from scipy.optimize import brentq
+
+    u = as_positive_float("speed", speed)
+    kt = as_positive_float("temperature", temperature)
+    m = as_positive_float("mass", mass)
+    sigma = as_positive_float("diameter", diameter)
+    if not 0.0 < float(eta) < 1.0:
+        raise ValueError(f"eta must lie in (0, 1), got {eta!r}")
+    if z is None:
+        z = kolafa_rottner_z
+    top = 0.7 if z is kolafa_rottner_z else 0.9
+    if float(eta) >= top:
+        raise ValueError(f"eta must lie below {top}, got {eta!r}")
+    area = math.pi * sigma * sigma / 4.0
+    n1 = float(eta) / area
+    p1 = n1 * kt * float(z(float(eta)))
+
+    def behind(d):
+        n2 = n1 * d / (d - u)
+        p2 = p1 + m * n1 * d * u
+        return n2, p2, kt - 0.5 * m * u * u + p2 * u / (n1 * d)
+
+    def mismatch(d):
+        n2, p2, t2 = behind(d)
+        return n2 * t2 * float(z(n2 * area)) - p2
+
+    # (from the densest state the equation of state allows to a shock far faster
+    # than the piston and the sound, where the mismatch changes sign)
+    low = u / (1.0 - float(eta) / top)
+    high = 10.0 * (u + math.sqrt(kt / m)) / (1.0 - float(eta) / top)
+    if mismatch(low) <= 0.0:
+        raise ValueError(f"a piston at speed {u} compresses eta = {eta} beyond {top}, "
+                         "where the equation of state ends")
+    d = brentq(mismatch, low, high, xtol=1e-300, rtol=4 * np.finfo(float).eps)
+    n2, _, t2 = behind(d)
+    return float(d), float(n2 * area), float(t2)
 
 
 def contact_value(z: ArrayLike, eta: ArrayLike) -> float | np.ndarray:

@@ -388,6 +388,13 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
     f = growth_factor(t, growth)
     dr = 0.0 if growth is None else r * growth.rate
     ncx = gi[0]
+    # (A moving segment is listed in many cells of a footprint: the search for the
+    # image last searched is kept and used again for the next cells that list it.)
+    last_w = -1
+    last_qx = 0
+    last_qy = 0
+    last_dt = INF
+    last_part = 0
     for v in range(v0, v1 + 1):
         ky = 0
         if gi[3] != 0:
@@ -440,9 +447,15 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
                     bx = wb[w, 0] + qx * gf[0]
                     by = wb[w, 1] + qy * gf[1]
                     if motion is not None and motion.kind[w] != FIXED:
-                        dtw, part = _moving.contact_time(t, x, y, vx, vy, gx, gy, r, ax, ay,
-                                                         bx, by, w, motion,
-                                                         min(best, horizon))
+                        if w != last_w or qx != last_qx or qy != last_qy:
+                            last_dt, last_part = _moving.contact_time(
+                                t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion,
+                                min(best, horizon))
+                            last_w = w
+                            last_qx = qx
+                            last_qy = qy
+                        dtw = last_dt
+                        part = last_part
                     elif growth is not None:
                         dtw, part = segment_time_grow(x, y, vx, vy, r * f, dr, ax, ay, bx, by)
                     elif gravity is None or (gx == 0.0 and gy == 0.0):
@@ -467,6 +480,22 @@ def _edge_time(e, v, a, c, side, ncell, periodic, gravity):
 
 
 @njit
+def _moving_listed(u0, u1, v0, v1, gi, wa, wstart, wwall, motion):
+    """Whether a moving segment is listed in a cell of the unwrapped block ``[u0, u1] x
+    [v0, v1]``."""
+    if wa.shape[0] == 0:
+        return False
+    for v in range(v0, v1 + 1):
+        cy = v % gi[1] if gi[3] != 0 else v
+        for u in range(u0, u1 + 1):
+            c = (u % gi[0] if gi[2] != 0 else u) + gi[0] * cy
+            for q in range(wstart[c], wstart[c + 1]):
+                if motion.kind[wwall[q]] != FIXED:
+                    return True
+    return False
+
+
+@njit
 def _predict_wide(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall,
                   wsx, wsy, gravity, growth, wide, motion):
     """:func:`predict` for a wide disk (:mod:`.wide`): its next event from time ``t``.
@@ -474,9 +503,10 @@ def _predict_wide(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wst
     ``code`` -1: a full prediction (box walls and every cell of its footprint).
     Otherwise the crossing ``code`` (``4 * what + direction``) has just grown its
     footprint by the column or row it names, or shrunk it: if its kept candidate is
-    still valid only the new cells are scanned against it (none for a shrink).  With
-    moving segments (``motion``) every prediction is full: the search for a moving
-    segment stops at the footprint's next change, and takes up again from there."""
+    still valid only the new cells are scanned against it (none for a shrink).  A
+    moving segment (``motion``) is searched up to the footprint's next change only, so
+    while one is listed in the footprint every prediction is full: it takes the
+    search up again."""
     k = wide.index[i]
     if gravity is None:
         vx = S[i, VX]
@@ -521,8 +551,10 @@ def _predict_wide(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wst
     x1 = wide.rect[k, 1]
     y0 = wide.rect[k, 2]
     y1 = wide.rect[k, 3]
-    partial = motion is None and code >= 0 and code < 8 and not (
+    partial = code >= 0 and code < 8 and not (
         kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
+    if partial and motion is not None:
+        partial = not _moving_listed(x0, x1, y0, y1, gi, wa, wstart, wwall, motion)
     kind = NONE
     partner = -1
     aux = 0

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 
+from conftest import seed_of
 from edmd2d import theory
 
 
@@ -400,9 +401,11 @@ def test_the_vibrating_wall_power_is_the_flux_weighted_mean_gain():
     """Monte Carlo of the floor's power: disks of a Maxwellian gas (kT = m = n = 1)
     arrive with normal speed ``c`` at the rate ``n f(c) (c + U)``, the wall moving at
     ``U = V cos(phase)`` with the phase uniform, and gain ``2 m U (U + c)``.  With
-    ``V = 0.1`` the leading order holds to ``V^2 / 8 = 0.13 %``; 2e6 samples give
-    0.3 % errors; the bound is 4 of them."""
-    rng = np.random.default_rng(5)
+    ``V = 0.1`` the leading order is 0.06 % from the exact phase average; 2e6 samples
+    give 0.3 % errors; the bound is 4 of them.  (The sampling and the closed form
+    make the same assumptions: this checks the averaging; the engine's shaken bed in
+    tests/test_shaken_bed.py checks the physics.)"""
+    rng = np.random.default_rng(seed_of(5))
     v = 0.1
     c = np.abs(rng.normal(size=2_000_000))  # normal speeds of those moving towards it
     u = v * np.cos(rng.uniform(0.0, 2.0 * np.pi, c.size))

@@ -1434,11 +1434,12 @@ class EngineState:
                 f"{v * extent:.3g}, must be at most {MAX_LENGTH:g} (the contact times "
                 "square it).  Use smaller speeds (a slower unit of time).")
 
-    def squeezing(self, i: int) -> tuple[list[int], list[str], list[int]]:
-        """What internal disk ``i`` touches now, split into the moving wall segments and
-        the rest (named as in errors: other segments, box walls, disks in the user's
-        numbering), and the internal indices of the disks it touches; nothing without
-        :class:`~edmd2d.physics.MovingWalls`.
+    def squeezing(self, i: int) -> tuple[list, list, list[int]]:
+        """What internal disk ``i`` touches now: the moving wall segments that move
+        towards it, as ``(k, normal)``; the other bodies, as ``(name, normal)`` (named as
+        in errors: segments, box walls, disks in the user's numbering); and the internal
+        indices of the disks it touches.  Each ``normal`` points from the body to the
+        disk's centre.  Nothing without :class:`~edmd2d.physics.MovingWalls`.
 
         "Touches": within ``1e-6`` of the contact distance, or of the distance the
         disk covers in 16 roundings of the clock (a squeezed disk, fast by then,
@@ -1452,25 +1453,56 @@ class EngineState:
         slack = max(1e-6 * r, 16.0 * speed * float(np.spacing(max(abs(self.time), 1.0))))
         reach = r + slack
         starts, ends = self.wall_ends()
+        motions = moving.motions()
         pushers, others = [], []
         for k in np.flatnonzero(~self.wall_open).tolist():
-            if _gaps._segment_distance(pos[i:i + 1], starts[k], ends[k], self.box)[0] <= reach:
-                if moving.kind[k] != _layout.FIXED:
-                    pushers.append(k)
-                else:
-                    others.append(f"walls[{k}]")
+            off = _gaps._segment_offset(pos[i:i + 1], starts[k], ends[k], self.box)[0]
+            if float(np.hypot(*off)) > reach:
+                continue
+            if k in motions:
+                if float(dot(motions[k].velocity_at(self.time), off)) > 0.0:
+                    pushers.append((k, off))
+            else:
+                others.append((f"walls[{k}]", off))
         for side, name in enumerate(BOX_WALL_EQUATIONS):
             axis, far = divmod(side, 2)
             if not self.box.periodic[axis]:
                 gap = (self.box.size[axis] - pos[i, axis]) if far else pos[i, axis]
                 if gap <= reach:
-                    others.append(f"the box wall at {name}")
-        d = _gaps._min_image(pos - pos[i], self.box)
+                    normal = np.zeros(2)
+                    normal[axis] = -1.0 if far else 1.0
+                    others.append((f"the box wall at {name}", normal))
+        d = _gaps._min_image(pos[i] - pos, self.box)
         near = np.hypot(d[:, 0], d[:, 1]) <= self.S[:, _layout.R] + reach
         near[i] = False
         touching = np.flatnonzero(near).tolist()
-        others += [f"disk {int(self.order[j])}" for j in touching]
+        others += [(f"disk {int(self.order[j])}", d[j]) for j in touching]
         return pushers, others, touching
+
+    def squeeze_error(self, start: list[int], stopped: str) -> RuntimeError | None:
+        """The error for a disk squeezed by a moving segment, when the run stalled at
+        one of the internal disks ``start``: that disk, or one it presses on through a
+        chain of touching disks, touches a segment moving towards it and, on the other
+        side, another body or another such segment; ``None`` if none does."""
+        queue, seen = list(start), set(start)
+        while queue and len(seen) <= 64:
+            c = queue.pop(0)
+            pushers, others, touching = self.squeezing(c)
+            for k, normal in pushers:
+                facing = [name for name, m in others if float(dot(normal, m)) < 0.0]
+                facing += [f"the moving segment walls[{q}]" for q, m in pushers
+                           if q != k and float(dot(normal, m)) < 0.0]
+                if facing:
+                    return RuntimeError(
+                        f"disk {int(self.order[c])} squeezed at t={self.time} between the "
+                        f"moving segment walls[{k}] and {' and '.join(facing)}: the "
+                        "segment's path closes a gap narrower than the disk, which would "
+                        "need unboundedly many collisions at one instant.  Stop the "
+                        "segment short of it (a shorter distance or amplitude) or give "
+                        f"the disk room to leave.  {stopped}")
+            queue += [t for t in touching if t not in seen]
+            seen.update(touching)
+        return None
 
     def wedged_limit(self) -> int:
         """The events in a row at one time after which disks count as wedged."""
@@ -1498,6 +1530,10 @@ class EngineState:
         if status == _layout.ERR_STALLED:
             kind = _layout.kind_of(int(self.E[i, _layout.KIND]))
             partner = f"disk {int(self.order[j])}" if kind == _layout.DISK else where
+            squeezed = self.squeeze_error([i] + ([j] if kind == _layout.DISK else []),
+                                          stopped)
+            if squeezed is not None:
+                return squeezed
             streak = self.model.streak
             involved = np.sort(self.order[streak >= streak.max() // 10])
             if self.gravity is not None and self.rest_supports is None:
@@ -1525,28 +1561,10 @@ class EngineState:
             other = (f"disk {int(self.order[j])}" if kind == _layout.DISK else
                      where if kind in (_layout.SEGMENT, _layout.BOX) else
                      "a grid cell's edge" if kind == _layout.CROSS else "a redraw")
-            # (The disk squeezed by a moving segment may be the next event's, or one
-            # it presses on through a chain of touching disks.)
-            queue, seen = [i], {i}
-            pushers, others = [], []
-            while queue and len(seen) <= 64:
-                c = queue.pop(0)
-                pushers, others, touching = self.squeezing(c)
-                if pushers and others:
-                    break
-                queue += [t for t in touching if t not in seen]
-                seen.update(touching)
-            if pushers and others:
-                names = " and ".join(f"walls[{k}]" for k in pushers)
-                return RuntimeError(
-                    f"disk {int(self.order[c])} squeezed at t={self.time} between the "
-                    "moving segment "
-                    f"{names} and {' and '.join(others)}: the segment's path closes a gap "
-                    "narrower than the disk, which would need unboundedly many "
-                    f"collisions ({self.wedged_limit()} or more in a row at this one "
-                    "time).  Stop the segment short of it (a shorter distance or "
-                    f"amplitude) or give the disk room to leave.  {stopped}"
-                )
+            squeezed = self.squeeze_error([i] + ([j] if kind == _layout.DISK else []),
+                                          stopped)
+            if squeezed is not None:
+                return squeezed
             return RuntimeError(
                 f"disks wedged at t={self.time}: {self.wedged_limit()} or more events in "
                 f"a row at this one time, the next of disk {user_i} with {other}, and the "

@@ -388,11 +388,13 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
     f = growth_factor(t, growth)
     dr = 0.0 if growth is None else r * growth.rate
     ncx = gi[0]
-    # (A moving segment is listed in many cells of a footprint: the search for the
-    # image last searched is kept and used again for the next cells that list it.)
+    # (A segment is listed in many cells of a footprint: the contact time of the image
+    # last computed is kept for the next cells that list it; a fixed segment's, only
+    # while the limit it was found under holds, which keeps every result as it was.)
     last_w = -1
     last_qx = 0
     last_qy = 0
+    last_best = INF
     last_dt = INF
     last_part = 0
     for v in range(v0, v1 + 1):
@@ -446,23 +448,30 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
                     ay = wa[w, 1] + qy * gf[1]
                     bx = wb[w, 0] + qx * gf[0]
                     by = wb[w, 1] + qy * gf[1]
-                    if motion is not None and motion.kind[w] != FIXED:
-                        if w != last_w or qx != last_qx or qy != last_qy:
-                            last_dt, last_part = _moving.contact_time(
-                                t, x, y, vx, vy, gx, gy, r, ax, ay, bx, by, w, motion,
-                                min(best, horizon))
-                            last_w = w
-                            last_qx = qx
-                            last_qy = qy
-                        dtw = last_dt
+                    moves = motion is not None and motion.kind[w] != FIXED
+                    if (w == last_w and qx == last_qx and qy == last_qy
+                            and (moves or best == last_best)):
+                        dtw = last_dt  # (a fixed segment: the same search, same limit)
                         part = last_part
-                    elif growth is not None:
-                        dtw, part = segment_time_grow(x, y, vx, vy, r * f, dr, ax, ay, bx, by)
-                    elif gravity is None or (gx == 0.0 and gy == 0.0):
-                        dtw, part = segment_time(x, y, vx, vy, r, ax, ay, bx, by)
                     else:
-                        dtw, part = segment_time_accel(x, y, vx, vy, gx, gy, r, ax, ay, bx,
-                                                       by, best)
+                        if moves:
+                            dtw, part = _moving.contact_time(t, x, y, vx, vy, gx, gy, r, ax,
+                                                             ay, bx, by, w, motion,
+                                                             min(best, horizon))
+                        elif growth is not None:
+                            dtw, part = segment_time_grow(x, y, vx, vy, r * f, dr, ax, ay,
+                                                          bx, by)
+                        elif gravity is None or (gx == 0.0 and gy == 0.0):
+                            dtw, part = segment_time(x, y, vx, vy, r, ax, ay, bx, by)
+                        else:
+                            dtw, part = segment_time_accel(x, y, vx, vy, gx, gy, r, ax, ay,
+                                                           bx, by, best)
+                        last_w = w
+                        last_qx = qx
+                        last_qy = qy
+                        last_best = best
+                        last_dt = dtw
+                        last_part = part
                     if dtw < best and -1 <= qx <= 1 and -1 <= qy <= 1:
                         best = dtw
                         kind = SEGMENT

@@ -297,7 +297,7 @@ def test_what_reads_the_segments_reads_them_where_they_are():
 
 
 @pytest.mark.parametrize("case", ["box wall", "peg", "stacked disk", "lid", "two pistons",
-                                  "inelastic lid"])
+                                  "inelastic lid", "stopped piston"])
 def test_a_squeezed_disk_stops_the_run_naming_what_squeezes_it(case, tmp_path):
     """A segment whose path closes a gap narrower than a disk would need unboundedly
     many collisions: the run stops with an error naming the disk, the moving segment
@@ -334,6 +334,12 @@ def test_a_squeezed_disk_stops_the_run_naming_what_squeezes_it(case, tmp_path):
         motions = {0: ed.Translation((0.0, -1.0), 3.0), 1: ed.Translation((0.0, 1.0), 3.0)}
         pos = [[5.0, 4.0]]
         other = "the moving segment walls[1]"
+    if case == "stopped piston":  # the lower one came up from y = 1 to 2 and stopped
+        walls.append(ed.Wall((2.0, 1.0), (8.0, 1.0)))
+        motions = {0: ed.Translation((0.0, -1.0), 3.2),
+                   1: ed.Translation((0.0, 1.0), 1.0, begin=t0 - 5.0)}
+        pos = [[5.0, 2.6]]
+        other = "the moving segment walls[1]"
     # (inelastic, the run stalls in a collapse rather than with the clock: the same error)
     options = (dict(restitution=0.9, gravity=(0.0, -1.0), resting=False)
                if case == "inelastic lid" else {})
@@ -359,12 +365,14 @@ def test_a_squeezed_disk_stops_the_run_naming_what_squeezes_it(case, tmp_path):
     np.testing.assert_array_equal(ed.checkpoint.load(path).positions, sim.positions)
 
 
-def test_disks_wedged_on_a_floor_moving_away_are_not_squeezed():
+@pytest.mark.parametrize("lift", [0.0, 1e-8])
+def test_disks_wedged_on_a_floor_moving_away_are_not_squeezed(lift):
     """A ring of touching disks around a periodic axis, lying on a shaken floor at its
-    highest (moving away from them): wedged by the ring, not squeezed by the floor."""
+    highest (its velocity there rounds to 7e-14), one disk lifted by ``lift``:
+    wedged by the ring, not squeezed by the floor."""
     t0 = 1e4
     box = ed.Box(10.0, 10.0, periodic=(True, False))
-    pos = [[k + 0.5, 2.5] for k in range(10)]
+    pos = [[k + 0.5, 2.5 + (lift if k == 5 else 0.0)] for k in range(10)]
     vel = [[0.1 if k == 0 else 0.0, 0.0] for k in range(10)]
     sim = ed.Simulation(pos, vel, radii=0.5, box=box,
                         walls=[ed.Wall((0.0, 1.9), (10.0, 1.9))],

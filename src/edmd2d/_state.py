@@ -32,7 +32,7 @@ from ._engine import sheared as _sheared
 from ._engine import wide as _wide
 from ._sums import dot
 from ._validate import about, as_generator, indices_where
-from .geometry import BOX_WALL_EQUATIONS, MAX_LENGTH, Wall
+from .geometry import BOX_WALL_EQUATIONS, MAX_LENGTH, Translation, Wall
 
 __all__ = ["EngineState", "build_model", "EVENT_KINDS", "EVENT_DTYPE", "VERSION"]
 
@@ -1435,11 +1435,12 @@ class EngineState:
                 "square it).  Use smaller speeds (a slower unit of time).")
 
     def squeezing(self, i: int) -> tuple[list, list, list[int]]:
-        """What internal disk ``i`` touches now: the moving wall segments that move
-        towards it, as ``(k, normal)``; the other bodies, as ``(name, normal)`` (named as
-        in errors: segments, box walls, disks in the user's numbering); and the internal
-        indices of the disks it touches.  Each ``normal`` points from the body to the
-        disk's centre.  Nothing without :class:`~edmd2d.physics.MovingWalls`.
+        """What internal disk ``i`` touches now: the moving wall segments, as ``(k,
+        normal, speed)``; the other bodies, as ``(name, normal, speed)`` (named as in
+        errors: segments, box walls, disks in the user's numbering); and the internal
+        indices of the disks it touches.  Each ``normal`` is the unit vector from the
+        body to the disk's centre, ``speed`` the body's velocity along it (0 but for a
+        moving segment).  Nothing without :class:`~edmd2d.physics.MovingWalls`.
 
         "Touches": within ``1e-6`` of the contact distance, or of the distance the
         disk covers in 16 roundings of the clock (a squeezed disk, fast by then,
@@ -1454,16 +1455,18 @@ class EngineState:
         reach = r + slack
         starts, ends = self.wall_ends()
         motions = moving.motions()
-        pushers, others = [], []
+        segments, others = [], []
         for k in np.flatnonzero(~self.wall_open).tolist():
             off = _gaps._segment_offset(pos[i:i + 1], starts[k], ends[k], self.box)[0]
-            if float(np.hypot(*off)) > reach:
+            dist = float(np.hypot(*off))
+            if dist > reach:
                 continue
+            normal = off / dist if dist > 0.0 else off
             if k in motions:
-                if float(dot(motions[k].velocity_at(self.time), off)) > 0.0:
-                    pushers.append((k, off))
+                segments.append((k, normal,
+                                 float(dot(motions[k].velocity_at(self.time), normal))))
             else:
-                others.append((f"walls[{k}]", off))
+                others.append((f"walls[{k}]", normal, 0.0))
         for side, name in enumerate(BOX_WALL_EQUATIONS):
             axis, far = divmod(side, 2)
             if not self.box.periodic[axis]:
@@ -1471,27 +1474,37 @@ class EngineState:
                 if gap <= reach:
                     normal = np.zeros(2)
                     normal[axis] = -1.0 if far else 1.0
-                    others.append((f"the box wall at {name}", normal))
+                    others.append((f"the box wall at {name}", normal, 0.0))
         d = _gaps._min_image(pos[i] - pos, self.box)
-        near = np.hypot(d[:, 0], d[:, 1]) <= self.S[:, _layout.R] + reach
+        dist = np.hypot(d[:, 0], d[:, 1])
+        near = dist <= self.S[:, _layout.R] + reach
         near[i] = False
         touching = np.flatnonzero(near).tolist()
-        others += [(f"disk {int(self.order[j])}", d[j]) for j in touching]
-        return pushers, others, touching
+        others += [(f"disk {int(self.order[j])}", d[j] / dist[j], 0.0) for j in touching]
+        return segments, others, touching
 
     def squeeze_error(self, start: list[int], stopped: str) -> RuntimeError | None:
         """The error for a disk squeezed by a moving segment, when the run stalled at
         one of the internal disks ``start``: that disk, or one it presses on through a
-        chain of touching disks, touches a segment moving towards it and, on the other
-        side, another body or another such segment; ``None`` if none does."""
+        chain of touching disks, touches a moving segment and, on the other side (unit
+        normals more than 120 degrees apart), a body or another segment, and the two
+        close the gap between them (by more than ``1e-9`` of the fastest motion's
+        speed, against rounding at a turning point); ``None`` if none does."""
+        moving = self.families.get("moving_walls")
+        if moving is None:
+            return None
+        tol = 1e-9 * max(m.speed if isinstance(m, Translation) else m.amplitude * m.omega
+                         for m in moving.motions().values())
         queue, seen = list(start), set(start)
         while queue and len(seen) <= 64:
             c = queue.pop(0)
-            pushers, others, touching = self.squeezing(c)
-            for k, normal in pushers:
-                facing = [name for name, m in others if float(dot(normal, m)) < 0.0]
-                facing += [f"the moving segment walls[{q}]" for q, m in pushers
-                           if q != k and float(dot(normal, m)) < 0.0]
+            segments, others, touching = self.squeezing(c)
+            bodies = others + [(f"the moving segment walls[{q}]", m, u)
+                               for q, m, u in segments]
+            for k, normal, push in segments:
+                facing = [name for name, m, u in bodies
+                          if name != f"the moving segment walls[{k}]"
+                          and float(dot(normal, m)) < -0.5 and push + u > tol]
                 if facing:
                     return RuntimeError(
                         f"disk {int(self.order[c])} squeezed at t={self.time} between the "

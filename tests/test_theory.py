@@ -428,11 +428,26 @@ def test_the_vibrated_bed_temperature_balances_power_and_losses():
         loss, _ = integrate.quad(lambda z, n0=n0, kt=kt, g=g: theory.collisional_dissipation(
             n0 * math.exp(-2.0 * g * z / kt), 0.98, kt, 1.2, 2.0), 0.0, math.inf)
         assert power == pytest.approx(loss, rel=1e-9)
+        # a floor of restitution 0.99: its net power balances the same losses
+        kt = theory.vibrated_bed_temperature(0.5, 4.0, 0.98, 3.0, diameter=1.2, mass=2.0,
+                                             wall_restitution=0.99)
+        n0 = 3.0 * 2.0 * g / kt
+        power = theory.vibrating_wall_power(n0, 0.5, 4.0, kt, mass=2.0,
+                                            wall_restitution=0.99)
+        loss, _ = integrate.quad(lambda z, n0=n0, kt=kt, g=g: theory.collisional_dissipation(
+            n0 * math.exp(-2.0 * g * z / kt), 0.98, kt, 1.2, 2.0), 0.0, math.inf)
+        assert power == pytest.approx(loss, rel=1e-9)
+    # elastic disks on an inelastic floor: the floor's gains and losses balance alone
+    kt = theory.vibrated_bed_temperature(0.5, 4.0, 1.0, 3.0, wall_restitution=0.9)
+    assert theory.vibrating_wall_power(1.0, 0.5, 4.0, kt, wall_restitution=0.9) == (
+        pytest.approx(0.0, abs=1e-12 * kt))
     base = theory.vibrated_bed_temperature(0.5, 4.0, 0.98, 3.0)
     assert theory.vibrated_bed_temperature(1.0, 4.0, 0.98, 3.0) == pytest.approx(4 * base)
     assert theory.vibrated_bed_temperature(0.5, 4.0, 0.98, 6.0) == pytest.approx(base / 2)
     with pytest.raises(ValueError, match="below 1"):
         theory.vibrated_bed_temperature(0.5, 4.0, 1.0, 3.0)
+    with pytest.raises(ValueError, match="wall_restitution"):
+        theory.vibrated_bed_temperature(0.5, 4.0, 0.9, 3.0, wall_restitution=1.5)
     with pytest.raises(ValueError, match="amplitude"):
         theory.vibrated_bed_temperature(0.0, 4.0, 0.9, 3.0)
     with pytest.raises(ValueError, match="disks_per_length"):

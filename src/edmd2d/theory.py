@@ -87,7 +87,10 @@ The formulas and where they come from:
   balance at ``kT = (2 sqrt(2) / pi) m (A omega)^2 / epsilon`` with ``epsilon = (1 -
   e^2) N sigma / L``: the temperature grows as the square of the floor's velocity
   amplitude, does not depend on gravity, and its corrections are of relative order
-  ``A omega / sqrt(kT / m) ~ epsilon^(1/2)`` (docs/moving-walls.md measures them).
+  ``A omega / sqrt(kT / m) ~ epsilon^(1/2)`` (docs/moving-walls.md measures them).  A
+  floor of restitution ``e_w`` gives ``(1 + e_w) / 2`` of that power and takes what a
+  floor at rest takes, ``(1 - e_w^2) n_0 kT^(3/2) / sqrt(2 pi m)``: then ``kT = (1 +
+  e_w) m (A omega)^2 / (pi epsilon / sqrt(2) + 1 - e_w^2)``.
 """
 
 from __future__ import annotations
@@ -1064,15 +1067,20 @@ def collisional_dissipation(n: ArrayLike, restitution: float, temperature: Array
 
 
 def vibrating_wall_power(n: ArrayLike, amplitude: float, omega: float,
-                         temperature: ArrayLike = 1.0, mass: float = 1.0
-                         ) -> float | np.ndarray:
-    """Mean power that an elastic wall vibrating as ``A sin(omega t)`` along its normal
-    gives a Maxwellian gas, per unit length of wall, to leading order in ``A omega /
-    sqrt(kT / m)``: ``S = 4 n m <U^2> sqrt(kT / (2 pi m)) = n (A omega)^2 sqrt(2 m kT
-    / pi)``.
+                         temperature: ArrayLike = 1.0, mass: float = 1.0,
+                         wall_restitution: float = 1.0) -> float | np.ndarray:
+    """Mean power that a wall vibrating as ``A sin(omega t)`` along its normal gives a
+    Maxwellian gas, per unit length of wall, to leading order in ``A omega / sqrt(kT /
+    m)``: ``S = n (A omega)^2 sqrt(2 m kT / pi)`` for an elastic wall (``4 n m <U^2>
+    sqrt(kT / (2 pi m))``).
 
     Derived in the module notes; ``n`` is the density of the gas at the wall and ``A``
-    small against the distances over which it changes.
+    small against the distances over which it changes.  A wall with restitution
+    ``e_w`` (the relative normal velocity reversed times ``e_w``) changes a disk's
+    energy by ``(m / 2) (2 (1 + e_w) U w - (1 - e_w^2) w^2)`` (``w`` the speed at which
+    they meet): it gives ``(1 + e_w) / 2`` of the elastic wall's power and takes
+    ``(1 - e_w^2) n kT^(3/2) / sqrt(2 pi m)``, what it would take at rest; the
+    difference is returned.
 
     Parameters
     ----------
@@ -1083,31 +1091,40 @@ def vibrating_wall_power(n: ArrayLike, amplitude: float, omega: float,
     temperature : float or array_like, default 1.0
         ``kT`` of the gas at the wall.
     mass : float, default 1.0
+    wall_restitution : float, default 1.0
+        ``e_w`` in (0, 1].
 
     Returns
     -------
     float or ndarray
-        Energy per unit length of wall and unit time.
+        Energy per unit length of wall and unit time (negative where the wall's
+        losses exceed its gains).
 
     Examples
     --------
     >>> round(vibrating_wall_power(0.02, 0.5, 5.0, 100.0), 4)
     0.9974
+    >>> round(vibrating_wall_power(0.02, 0.5, 5.0, 100.0, wall_restitution=0.99), 4)
+    0.8336
     """
     a = as_positive_float("amplitude", amplitude)
     w = as_positive_float("omega", omega)
     m = as_positive_float("mass", mass)
+    ew = _restitution(wall_restitution, "wall_restitution")
     kt = _positive_array("temperature", temperature)
-    return _out(np.asarray(n, dtype=float) * (a * w) ** 2 * np.sqrt(2.0 * m * kt / math.pi))
+    n = np.asarray(n, dtype=float)
+    gain = 0.5 * (1.0 + ew) * n * (a * w) ** 2 * np.sqrt(2.0 * m * kt / math.pi)
+    return _out(gain - (1.0 - ew * ew) * n * kt ** 1.5 / math.sqrt(2.0 * math.pi * m))
 
 
 def vibrated_bed_temperature(amplitude: float, omega: float, restitution: float,
                              disks_per_length: float, diameter: float = 1.0,
-                             mass: float = 1.0) -> float:
-    """Granular temperature of a dilute, nearly elastic bed on an elastic floor
-    vibrating as ``A sin(omega t)``, to leading order (Kumaran's regime):
+                             mass: float = 1.0, wall_restitution: float = 1.0) -> float:
+    """Granular temperature of a dilute, nearly elastic bed on a floor vibrating as
+    ``A sin(omega t)``, to leading order (Kumaran's regime): for an elastic floor
     ``kT = (2 sqrt(2) / pi) m (A omega)^2 / epsilon``, ``epsilon = (1 - e^2) N sigma /
-    L``.
+    L``; for a floor of restitution ``e_w``, ``kT = (1 + e_w) m (A omega)^2 / (pi
+    epsilon / sqrt(2) + 1 - e_w^2)``.
 
     The floor's power (:func:`vibrating_wall_power`) balances the collisions' losses
     (:func:`collisional_dissipation`) integrated over the barometric profile (module
@@ -1115,17 +1132,20 @@ def vibrated_bed_temperature(amplitude: float, omega: float, restitution: float,
     relative order ``epsilon^(1/2)``), the disks collide many times in a flight
     (``N sigma / L`` well above 1), the bed is dilute (``(N / L) sigma^2 m g / kT``
     small) and the floor's amplitude is small against the bed's height ``kT / (m
-    g)``.  Gravity drops out.
+    g)``; an inelastic floor must lose little, ``1 - e_w`` of the order of
+    ``epsilon``, or it keeps the bed cold.  Gravity drops out.
 
     Parameters
     ----------
     amplitude, omega : float
         The floor's amplitude ``A`` and angular frequency ``omega`` (> 0).
     restitution : float
-        ``e`` of disk-disk collisions, in (0, 1).
+        ``e`` of disk-disk collisions, in (0, 1].
     disks_per_length : float
         ``N / L``, disks per unit length of floor (> 0).
     diameter, mass : float, default 1.0
+    wall_restitution : float, default 1.0
+        The floor's ``e_w``, in (0, 1].
 
     Returns
     -------
@@ -1136,18 +1156,22 @@ def vibrated_bed_temperature(amplitude: float, omega: float, restitution: float,
     --------
     >>> round(vibrated_bed_temperature(0.5, 5.0, 0.99, 4.0), 3)
     70.691
+    >>> round(vibrated_bed_temperature(0.5, 5.0, 0.99, 4.0, wall_restitution=0.99), 3)
+    63.222
     """
     e = _restitution(restitution)
-    if e == 1.0:
-        raise ValueError("restitution must be below 1: elastic disks never reach a "
-                         "steady temperature on a vibrating floor")
+    ew = _restitution(wall_restitution, "wall_restitution")
+    if e == 1.0 and ew == 1.0:
+        raise ValueError("restitution or wall_restitution must be below 1: elastic disks "
+                         "on an elastic floor never reach a steady temperature")
     a = as_positive_float("amplitude", amplitude)
     w = as_positive_float("omega", omega)
     per_length = as_positive_float("disks_per_length", disks_per_length)
     sigma = as_positive_float("diameter", diameter)
     m = as_positive_float("mass", mass)
     epsilon = (1.0 - e * e) * per_length * sigma
-    return 2.0 * math.sqrt(2.0) / math.pi * m * (a * w) ** 2 / epsilon
+    return ((1.0 + ew) * m * (a * w) ** 2
+            / (math.pi * epsilon / math.sqrt(2.0) + 1.0 - ew * ew))
 
 
 def _positive_array(name: str, value: ArrayLike) -> np.ndarray:
@@ -1157,9 +1181,9 @@ def _positive_array(name: str, value: ArrayLike) -> np.ndarray:
     return arr
 
 
-def _restitution(e) -> float:
+def _restitution(e, name: str = "restitution") -> float:
     value = float(e)
     if not 0.0 < value <= 1.0:
-        raise ValueError(f"restitution must lie in (0, 1], got {e!r}")
+        raise ValueError(f"{name} must lie in (0, 1], got {e!r}")
     return value
 

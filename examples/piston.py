@@ -100,12 +100,6 @@ def main(out: Path) -> None:
 
 
 if __name__ == "__main__":
-    import argparse
+    import _cli  # (examples/_cli.py: the gallery's shared command line)
 
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("out", nargs="?", type=Path,
-                        default=Path(__file__).parent / "output" / "piston.png")
-    parser.add_argument("--n", type=int, default=N, help="disks")
-    args = parser.parse_args()
-    N = args.n
-    main(args.out)
+    _cli.run(globals(), "piston.png")

@@ -1499,12 +1499,11 @@ class EngineState:
         while queue and len(seen) <= 64:
             c = queue.pop(0)
             segments, others, touching = self.squeezing(c)
-            bodies = others + [(f"the moving segment walls[{q}]", m, u)
-                               for q, m, u in segments]
             for k, normal, push in segments:
-                facing = [name for name, m, u in bodies
-                          if name != f"the moving segment walls[{k}]"
-                          and float(dot(normal, m)) < -0.5 and push + u > tol]
+                facing = [name for name, m, u in others
+                          if float(dot(normal, m)) < -0.5 and push + u > tol]
+                facing += [f"the moving segment walls[{q}]" for q, m, u in segments
+                           if q != k and float(dot(normal, m)) < -0.5 and push + u > tol]
                 if facing:
                     return RuntimeError(
                         f"disk {int(self.order[c])} squeezed at t={self.time} between the "

@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import random_system
+from conftest import random_system, segment_distance
 from edmd2d.physics import Resting
 from edmd2d.reference import ReferenceSimulation
 
@@ -45,11 +45,11 @@ def _canonical(events):
     return result
 
 
-def _pair(pos, vel, rad, mass, box, walls):
-    """The engine and the reference on one system, the reference with the engine's
-    criteria of rest and its TC model's ``tc``."""
+def _pair(pos, vel, rad, mass, box, walls, grid="auto"):
+    """The engine (on the grid ``grid``) and the reference on one system, the
+    reference with the engine's criteria of rest and its TC model's ``tc``."""
     sim = ed.Simulation(pos, vel, rad, mass, box=box, walls=walls, gravity=(0.0, -1.0),
-                        **MODEL)
+                        grid=grid, **MODEL)
     sim._record_events(100_000)
     ref = ReferenceSimulation(pos, vel, rad, mass, box=box, walls=walls,
                               gravity=(0.0, -1.0), resting=sim._state.families["resting"],
@@ -225,3 +225,66 @@ def test_a_slow_disk_leaves_a_static_body_at_the_soft_speed_times_the_pressing_s
         assert [e[1:] for e in events] == [("wall", 0, 0)]
         assert events[0][0] == pytest.approx(v, rel=1e-9)
         np.testing.assert_allclose(run.velocities[0], after, rtol=1e-9, atol=1e-15)
+
+
+# ---------------------------------------------------------------- on the wide grid
+def _with_a_wide_disk(seed):
+    """Ten disks of radii 0.3-0.4 in a box 6-9 wide (periodic along x for odd seeds,
+    a slanted segment for every third), one of them made 1.0 in radius where that
+    fits: on the wide grid it is listed in the cells of its footprint."""
+    rng = np.random.default_rng(1000 + seed)
+    box = ed.Box(rng.uniform(6.0, 9.0), rng.uniform(5.0, 8.0),
+                 periodic=(bool(seed % 2), False))
+    walls = [] if seed % 3 else [ed.Wall((0.5 * box.width, 0.3 * box.height),
+                                         (0.7 * box.width, 0.45 * box.height))]
+    pos, vel, rad, mass = random_system(rng, 10, box, walls, rmin=0.3, rmax=0.4)
+    for k, p in enumerate(pos):
+        gaps = np.hypot(*(pos - p).T) - rad - 1.0
+        gaps[k] = 1.0
+        inside = 1.0 < p[1] < box.height - 1.0 and (box.periodic[0]
+                                                   or 1.0 < p[0] < box.width - 1.0)
+        if (gaps > 0).all() and inside and all(segment_distance(p, w) > 1.0
+                                               for w in walls):
+            rad[k] = 1.0
+            return (pos, vel, rad, mass, box, walls), k
+    raise AssertionError("no room for the wide disk")
+
+
+@pytest.mark.parametrize("seed, t_end", [(1, 10.0), (8, 4.49), (9, 4.5), (32, 7.78)])
+def test_disks_settle_on_a_wide_disk_as_in_the_reference(seed, t_end):
+    """With a disk 2.5-3.3 times wider than the others listed in its footprint, the engine
+    settles, wakes and settles again as the reference does (1 to 16 rests and up to 12 wakes
+    in each window), and the wide disk comes to rest itself.  (Each window ends before the
+    runs part ways by rounding, which the two grids do at the same events: the largest
+    difference of event times measured in them is 3e-11.)"""
+    system, wide = _with_a_wide_disk(seed)
+    sim, ref = _pair(*system, grid="wide")
+    assert sim._state.wide is not None and sim._state.wide.index[wide] >= 0
+    sim.advance(until=t_end)
+    ref.advance(until=t_end)
+    events = _assert_same_run(sim, ref)
+    assert any(e[1] == "rest" and e[2] == wide for e in events)
+
+
+def test_a_wide_disk_woken_wakes_the_disk_it_holds():
+    """A disk 1.5 in radius rests on the floor, 0.7 from the left wall; a disk 0.4 in
+    radius rests in the pocket between them, held by both.  A third, sliding along
+    the floor at speed 3, hits the wide disk (far above the speed that wakes it), and
+    the small one, its support gone, wakes with it at that instant; both settle
+    again.  On the wide grid the small disk finds the wide one, and the wide one the
+    small one, through the footprint's cells."""
+    pos = [[2.2, 1.5003], [0.4001, 1.5003 + np.sqrt(1.9001 ** 2 - 1.7999 ** 2)],
+           [8.0, 0.4003], [9.0, 4.0]]
+    vel = [[0.0, 0.0], [0.0, 0.0], [-3.0, 0.0], [0.0, 0.0]]
+    system = (pos, vel, [1.5, 0.4, 0.4, 0.4], [4.0, 1.0, 1.0, 1.0],
+              ed.Box(10.0, 12.0, periodic=False), [])
+    sim, ref = _pair(*system, grid="wide")
+    assert sim._state.wide is not None and sim._state.wide.index[0] >= 0
+    sim.advance(until=12.0)
+    ref.advance(until=12.0)
+    events = _assert_same_run(sim, ref)
+    rests = {e[2]: e[0] for e in events if e[1] == "rest" and e[0] < 0.1}
+    assert sorted(rests) == [0, 1]
+    woken = [e for e in events if e[1] == "wake" and 1.0 < e[0] < 2.0]
+    assert [e[2] for e in woken] == [0, 1] and woken[0][0] == woken[1][0]
+    assert any(e[1] == "rest" and e[2] == 0 and e[0] > 2.0 for e in events)

@@ -89,8 +89,7 @@ def check_grid(grid, rad: np.ndarray, cell_size, families: dict) -> None:
     if grid != "wide":
         return
     others = [name for name, other in (("cell_size", cell_size),
-                                       ("shear", families.get("shear")),
-                                       ("resting", families.get("resting")))
+                                       ("shear", families.get("shear")))
               if other is not None]
     if others:
         raise ValueError(f"grid='wide' does not combine with {others[0]}")

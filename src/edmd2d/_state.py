@@ -397,8 +397,13 @@ class EngineState:
             self.wstart, self.wwall, self.wsx, self.wsy = start, closed[wall], sx, sy
         self.wide = None
         if narrow is not None:
+            # (With disks at rest the footprint also holds the supports within the
+            # rest's gap, so that the disks near one another on the grid are those
+            # that can hold one another up: see _engine/wide.py, ``near``.)
+            rest = self.families.get("resting")
             self.wide = _wide.allocate(self.S[:, _layout.R] * (grown * scale), narrow,
-                                       self.gi, self.gf, reach)
+                                       self.gi, self.gf,
+                                       reach + (0.0 if rest is None else rest.gap))
             _wide.fill(self.S, self.E, self.gi, self.gf, self.wide, self.head, self.nxt,
                        self.prv, grown)
 
@@ -406,13 +411,14 @@ class EngineState:
         """The largest of the diameters ``2 radii`` that the grid's cells are sized
         for, where disks wider than it are listed in their footprints
         (:mod:`._engine.wide`); ``None`` for the uniform grid (a ``cell_size`` given,
-        shear, disks at rest, or radii too alike for it to pay)."""
-        if (self.grid_mode == "uniform" or cell_size is not None or self.shear is not None
-                or "resting" in self.families):
+        shear, or radii too alike for it to pay)."""
+        if self.grid_mode == "uniform" or cell_size is not None or self.shear is not None:
             return None
         box = self.box
+        rest = self.families.get("resting")
         narrow = _wide.choose(radii, box.width, box.height, box.periodic, _CELL_MARGIN,
-                              force=self.grid_mode == "wide")
+                              force=self.grid_mode == "wide",
+                              extra=0.0 if rest is None else rest.gap)
         if narrow is None and self.grid_mode == "wide" and "gi" not in vars(self):
             # (Refused when the simulation is made; a rebuild later, under growth that
             # made the footprints too wide for the box, falls back to the uniform grid.)
@@ -878,8 +884,10 @@ class EngineState:
                             frozen, t_static,
                             np.empty(len(self.S), np.int32),
                             np.empty(_resting.CANDIDATES, np.int64),
-                            np.empty(_resting.CANDIDATES), np.empty(9, np.int64),
-                            self.log_bundle(), self.order)
+                            np.empty(_resting.CANDIDATES),
+                            np.empty((2, _wide.near_rows(len(self.S), self.gi, self.wide), 3),
+                                     np.int32),
+                            self.log_bundle(), self.order, self.wide)
 
     def first_rest_check(self, after: float | None = None) -> float | None:
         """The first time after ``after`` (default :attr:`time`) at which groups of

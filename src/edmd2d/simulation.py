@@ -109,11 +109,11 @@ class Simulation(SimulationBase):
         the narrow disks, and each disk wider than them is listed in every cell near
         it, so that a few large disks do not slow the many small ones.  ``"auto"``
         keeps the uniform grid unless the largest diameter is at least 2.5 times the
-        smallest and an estimate of the work finds the wide grid cheaper.  Wide disks
-        do not combine with shear, disks at rest or a ``cell_size`` (there ``"auto"``
-        keeps the uniform grid); under growth, a rebuild after which the wide disks'
-        footprints no longer fit a periodic box makes a uniform grid.  Every grid
-        gives the same dynamics; runs on different grids differ by rounding.
+        smallest and an estimate of the work finds the wide grid cheaper.  Wide disks do not
+        combine with shear or a ``cell_size`` (there ``"auto"`` keeps the uniform grid);
+        they come to rest, and hold others, as narrow ones do; under growth, a rebuild after
+        which the wide disks' footprints no longer fit a periodic box makes a uniform grid.
+        Every grid gives the same dynamics; runs on different grids differ by rounding.
     species : array_like of int, shape (N,), optional
         Each disk's species (``0, 1, ...``), which selects its row of the
         ``restitution`` table; all 0 by default.

@@ -489,12 +489,16 @@ class Rest(NamedTuple):
     codes: np.ndarray
     #: float64, shape (``resting.CANDIDATES``,): their normals' angles from "up".
     angles: np.ndarray
-    #: int64, shape (9,): room for a 3x3 block of cells.
-    cells: np.ndarray
+    #: int32, shape (2, M, 3): room for the disks near a disk (``wide.near``): one
+    #: for the cascade of a wake and the flying disks to predict afresh, one for the
+    #: static bodies examined for a support.
+    near: np.ndarray
     #: The event log, where rests and wakes are logged as events (``REST``, ``WAKE``).
     log: Log
     #: int64: each row's user index (for the log).
     order: np.ndarray
+    #: The grid's wide disks (``Wide``), or ``None``: where the disks near one are.
+    wide: Wide | None
 
 
 class Shear(NamedTuple):

@@ -50,6 +50,11 @@ with a normal speed below ``rest.speed``, leaves the disk sliding along the wall
 (``flight``: the wall holds gravity's normal component), as the TC model's ``hold``
 does; without it a disk sliding along a floor would bounce ever lower for ever.
 
+The disks a disk meets as supports, wakes in a cascade or has predicted afresh are
+those near it on the grid (:func:`.wide.near`: its 3x3 cells, and with wide disks the
+footprints), a symmetric relation: a disk that found a support near it is found near
+that support again when the support wakes.
+
 Supports are coded as disk rows (``>= 0``), box walls ``-2 - side`` and wall segments
 ``-6 - k``; ``-1`` is an empty slot.
 """
@@ -61,7 +66,6 @@ import math
 from .._jit import njit
 from . import queue
 from .flight import drift, position_at, sliding_acceleration
-from .grid import neighbour
 from .layout import (
     A_DISSIPATED,
     A_VIRIAL,
@@ -70,7 +74,6 @@ from .layout import (
     A_VIRIAL_YY,
     C_RESTS,
     C_WAKES,
-    CELL,
     DISK,
     KIND,
     PARTNER,
@@ -97,6 +100,7 @@ from .response import (
     _release,
     _wall_normals,
 )
+from .wide import block, near
 
 #: The supports kept per resting disk.
 MAX_SUPPORTS = 4
@@ -108,8 +112,8 @@ SEGMENT_SUPPORT = -6  # wall segment ``k``: -6 - k
 #: gap a disk crosses at one instant.
 WEDGE_TOUCH = 1e-9
 #: The bodies within the gap examined when a disk is put to rest (a disk touches at
-#: most six others of its size, and a few walls).
-CANDIDATES = 32
+#: most six others of its size, and a few walls; a wide disk, some 6 r / r_min).
+CANDIDATES = 256
 
 
 @njit
@@ -156,26 +160,6 @@ def mark_stale(k, t, E, tcand, stamp, qt, hv, qhead, qs, qf):
 
 
 @njit
-def _near_cells(c, gi, cells):
-    """The cells of the 3x3 block around cell ``c`` (those that exist: a walled axis
-    ends), written to ``cells``; returns how many."""
-    ncx = gi[0]
-    cy = c // ncx
-    cx = c - cy * ncx
-    n = 0
-    for ox in range(-1, 2):
-        nxc, _ = neighbour(cx, ox, ncx, gi[2] != 0)
-        if nxc < 0:
-            continue
-        for oy in range(-1, 2):
-            nyc, _ = neighbour(cy, oy, gi[1], gi[3] != 0)
-            if nyc >= 0:
-                cells[n] = nxc + ncx * nyc
-                n += 1
-    return n
-
-
-@njit
 def wake(j, t, skip, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, head, nxt,
          wa, wb, wstart, wwall, wsx, wsy, acc, counts, heated, gravity, rest):
     """Wake resting disk ``j`` at time ``t`` and, in cascade, every resting disk that
@@ -192,26 +176,24 @@ def wake(j, t, skip, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, gf, he
                   gravity, rest)
         stack[0] = j
         n = 1
-    cells = rest.cells
+    around = rest.near[0]
     while n > 0:
         n -= 1
         d = stack[n]
-        for k in range(_near_cells(E[d, CELL], gi, cells)):
-            m = head[cells[k]]
-            while m >= 0:
-                if support[m] & RESTING:
-                    for s in range(MAX_SUPPORTS):
-                        if sup[m, s] == d:
-                            # Still held by the others (their supports renewed), or
-                            # woken in turn.
-                            if not held(m, t, S, E, invm, gi, gf, head, nxt, wa, wb,
-                                        wstart, wwall, wsx, wsy, heated, gravity, rest):
-                                _wake_one(m, t, skip, S, E, tcand, stamp, qt, hv, qhead,
-                                          qs, qf, invm, acc, counts, gravity, rest)
-                                stack[n] = m
-                                n += 1
-                            break
-                m = nxt[m]
+        for k in range(near(d, E, gi, head, nxt, rest.wide, around)):
+            m = around[k, 0]
+            if support[m] & RESTING:
+                for s in range(MAX_SUPPORTS):
+                    if sup[m, s] == d:
+                        # Still held by the others (their supports renewed), or woken
+                        # in turn.
+                        if not held(m, t, S, E, invm, gi, gf, head, nxt, wa, wb, wstart,
+                                    wwall, wsx, wsy, heated, gravity, rest):
+                            _wake_one(m, t, skip, S, E, tcand, stamp, qt, hv, qhead, qs,
+                                      qf, invm, acc, counts, gravity, rest)
+                            stack[n] = m
+                            n += 1
+                        break
 
 
 @njit
@@ -557,17 +539,25 @@ def impact_group(t, n, vel, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi,
         S[i, VY] = vel[k, 1]
         _release(i, S, support)
         stamp[i] += 1
-    cells = rest.cells
     for k in range(n):
         i = rest.stack[k]
         mark_stale(i, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
-        for c in range(_near_cells(E[i, CELL], gi, cells)):
-            m = head[cells[c]]
-            while m >= 0:
-                if (support[m] & RESTING) == 0 and (
-                        invm[m] > 0.0 or S[m, VX] != 0.0 or S[m, VY] != 0.0):
-                    mark_stale(m, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
-                m = nxt[m]
+        _predict_around(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head,
+                        nxt, gravity, rest)
+
+
+@njit
+def _predict_around(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head, nxt,
+                    gravity, rest):
+    """Predict afresh, at ``t``, the disks in flight near disk ``i``: a contact with it
+    may now come sooner than their next events."""
+    support = gravity.support
+    around = rest.near[0]
+    for k in range(near(i, E, gi, head, nxt, rest.wide, around)):
+        m = around[k, 0]
+        if (support[m] & RESTING) == 0 and (
+                invm[m] > 0.0 or S[m, VX] != 0.0 or S[m, VY] != 0.0):
+            mark_stale(m, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
 
 
 @njit
@@ -587,15 +577,8 @@ def _put_to_rest(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head
     stamp[i] += 1
     counts[C_RESTS] += 1
     _log(REST, i, t, vx, vy, invm, rest)
-    # A flying disk near it may now meet it before its next event: predict it afresh.
-    cells = rest.cells
-    for k in range(_near_cells(E[i, CELL], gi, cells)):
-        m = head[cells[k]]
-        while m >= 0:
-            if m != i and (support[m] & RESTING) == 0 and (
-                    invm[m] > 0.0 or S[m, VX] != 0.0 or S[m, VY] != 0.0):
-                mark_stale(m, t, E, tcand, stamp, qt, hv, qhead, qs, qf)
-            m = nxt[m]
+    _predict_around(i, t, S, E, tcand, stamp, qt, hv, qhead, qs, qf, invm, gi, head, nxt,
+                    gravity, rest)
 
 
 @njit
@@ -658,6 +641,15 @@ def _cone(i, t, upx, upy, write, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, 
     return True
 
 
+@njit(inline="always")
+def _listed(codes, n, code):
+    """Whether ``code`` is among the first ``n`` of ``codes``."""
+    for k in range(n):
+        if codes[k] == code:
+            return True
+    return False
+
+
 @njit
 def _statics(i, t, upx, upy, tol, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, wwall,
              wsx, wsy, heated, gravity, rest):
@@ -691,68 +683,69 @@ def _statics(i, t, upx, upy, tol, S, E, invm, gi, gf, head, nxt, wa, wb, wstart,
             if angles[n] == 0.0:
                 flat_k = n
             n += 1
-    # Wall segments listed for the disk's cell: the side (flat) or an end point.
-    c = E[i, CELL]
-    k0 = 0
-    k1 = 0
-    if wa.shape[0] > 0:  # (without segments the lists are not there)
-        k0 = wstart[c]
-        k1 = wstart[c + 1]
-    for k in range(k0, k1):
-        w = wwall[k]
-        if heated is not None and heated.kt[4 + w] > 0.0:
-            continue
-        shx = wsx[k] * gf[0]
-        shy = wsy[k] * gf[1]
-        ax = wa[w, 0] + shx
-        ay = wa[w, 1] + shy
-        bx = wb[w, 0] + shx
-        by = wb[w, 1] + shy
-        ux, uy, ll, nx, ny, h, _ = _segment_frame(x, y, 0.0, 0.0, ax, ay, bx, by)
-        along = ((x - ax) * ux + (y - ay) * uy) / ll
-        flat = 0.0 <= along <= 1.0
-        if flat:
-            gap = abs(h) - r
-            if h < 0.0:
-                nx = -nx
-                ny = -ny
-        else:
-            ex = ax if along < 0.0 else bx
-            ey = ay if along < 0.0 else by
-            dist = math.hypot(x - ex, y - ey)
-            gap = dist - r
-            nx = (x - ex) / dist
-            ny = (y - ey) / dist
-        if gap <= tol and n < CANDIDATES:
-            codes[n] = SEGMENT_SUPPORT - w
-            angles[n] = math.atan2(upx * ny - upy * nx, upx * nx + upy * ny)
-            if flat and angles[n] == 0.0:
-                flat_k = n
-            n += 1
-    # Disks at rest, and immovable disks standing still, in the 3x3 neighbour cells.
+    # Wall segments listed for the disk's cell (a wide disk: its footprint's cells,
+    # each segment once): the side (flat) or an end point.
     ncx = gi[0]
-    cy = c // ncx
-    cx = c - cy * ncx
-    for ox in range(-1, 2):
-        nxc, sx = neighbour(cx, ox, ncx, gi[2] != 0)
-        if nxc < 0:
-            continue
-        for oy in range(-1, 2):
-            nyc, sy = neighbour(cy, oy, gi[1], gi[3] != 0)
-            if nyc < 0:
-                continue
-            m = head[nxc + ncx * nyc]
-            while m >= 0:
-                static = (support[m] & RESTING) != 0 or (
-                    invm[m] == 0.0 and S[m, VX] == 0.0 and S[m, VY] == 0.0)
-                if m != i and static:
-                    xm, ym = position_at(m, t, S, gravity)
-                    dx = x - (xm + sx * gf[0])
-                    dy = y - (ym + sy * gf[1])
-                    dist = math.hypot(dx, dy)
-                    if dist - (r + S[m, R]) <= tol and n < CANDIDATES:
-                        codes[n] = m
-                        angles[n] = math.atan2(upx * dy - upy * dx, upx * dx + upy * dy)
-                        n += 1
-                m = nxt[m]
+    u0, u1, v0, v1, spread = block(i, E, gi, rest.wide)
+    for v in range(v0, v1 + 1):
+        ky = v // gi[1] if gi[3] != 0 else 0
+        for u in range(u0, u1 + 1):
+            kx = u // ncx if gi[2] != 0 else 0
+            c = (u - kx * ncx) + ncx * (v - ky * gi[1])
+            k0 = 0
+            k1 = 0
+            if wa.shape[0] > 0:  # (without segments the lists are not there)
+                k0 = wstart[c]
+                k1 = wstart[c + 1]
+            for k in range(k0, k1):
+                w = wwall[k]
+                if heated is not None and heated.kt[4 + w] > 0.0:
+                    continue
+                qx = wsx[k] + kx
+                qy = wsy[k] + ky
+                if spread and (abs(qx) > 1 or abs(qy) > 1
+                               or _listed(codes, n, SEGMENT_SUPPORT - w)):
+                    continue
+                shx = qx * gf[0]
+                shy = qy * gf[1]
+                ax = wa[w, 0] + shx
+                ay = wa[w, 1] + shy
+                bx = wb[w, 0] + shx
+                by = wb[w, 1] + shy
+                ux, uy, ll, nx, ny, h, _ = _segment_frame(x, y, 0.0, 0.0, ax, ay, bx, by)
+                along = ((x - ax) * ux + (y - ay) * uy) / ll
+                flat = 0.0 <= along <= 1.0
+                if flat:
+                    gap = abs(h) - r
+                    if h < 0.0:
+                        nx = -nx
+                        ny = -ny
+                else:
+                    ex = ax if along < 0.0 else bx
+                    ey = ay if along < 0.0 else by
+                    dist = math.hypot(x - ex, y - ey)
+                    gap = dist - r
+                    nx = (x - ex) / dist
+                    ny = (y - ey) / dist
+                if gap <= tol and n < CANDIDATES:
+                    codes[n] = SEGMENT_SUPPORT - w
+                    angles[n] = math.atan2(upx * ny - upy * nx, upx * nx + upy * ny)
+                    if flat and angles[n] == 0.0:
+                        flat_k = n
+                    n += 1
+    # Disks at rest, and immovable disks standing still, near it on the grid.
+    around = rest.near[1]
+    for k in range(near(i, E, gi, head, nxt, rest.wide, around)):
+        m = around[k, 0]
+        static = (support[m] & RESTING) != 0 or (
+            invm[m] == 0.0 and S[m, VX] == 0.0 and S[m, VY] == 0.0)
+        if static:
+            xm, ym = position_at(m, t, S, gravity)
+            dx = x - (xm + around[k, 1] * gf[0])
+            dy = y - (ym + around[k, 2] * gf[1])
+            dist = math.hypot(dx, dy)
+            if dist - (r + S[m, R]) <= tol and n < CANDIDATES:
+                codes[n] = m
+                angles[n] = math.atan2(upx * dy - upy * dx, upx * dx + upy * dy)
+                n += 1
     return n, flat_k

@@ -246,14 +246,15 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
 
     (One function for both, compiled into the event loop at a single place.)
     """
-    if wide is not None and wide.index[i] >= 0:
-        return _predict_wide(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt, wa,
-                             wb, wstart, wwall, wsx, wsy, gravity, growth, wide, motion)
     if gravity is not None and gravity.support[i] & RESTING:
-        # At rest: no event of its own (flying disks hold their contacts with it).
+        # At rest: no event of its own (flying disks hold their contacts with it), and
+        # a wide disk's footprint holds still.
         tcand[i] = INF
         E[i, KIND] = NONE
         return INF
+    if wide is not None and wide.index[i] >= 0:
+        return _predict_wide(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt, wa,
+                             wb, wstart, wwall, wsx, wsy, gravity, growth, wide, motion)
     partial = direction >= 0 and not (
         kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
     if gravity is None:

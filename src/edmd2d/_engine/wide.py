@@ -54,7 +54,7 @@ import math
 import numpy as np
 
 from .._jit import kernel, njit
-from .grid import insert, remove
+from .grid import insert, neighbour, remove
 from .layout import (
     CELL,
     R,
@@ -213,6 +213,112 @@ def cross(i, t, code, S, E, stamp, image, gi, gf, wide):
     return code
 
 
+@njit
+def near(d, E, gi, head, nxt, wide, out):
+    """The disks near disk ``d`` on the grid, those whose contacts with ``d`` it
+    finds: on the uniform grid (``wide`` ``None``) and for a narrow disk, the disks in
+    the 3x3 cells around its cell, then the wide disks listed in its own cell; for a
+    wide disk, the narrow disks in its footprint's cells and the other wide disks
+    listed there, each image once.  Written to ``out`` as rows ``(j, sx, sy)``: ``j``'s
+    image at ``x_j + (sx, sy) L`` is the one near ``d``.  Returns how many (``out``
+    holds them all: :func:`near_rows`).
+
+    The relation is symmetric (``j`` is near ``d`` if and only if ``d`` is near ``j``,
+    through the opposite shift): the 3x3 block is; a narrow and a wide disk are near
+    when the narrow one's cell is in the wide one's footprint; two wide disks when
+    their footprints share a cell.  So a disk that finds a support near it is found
+    near that support again when the support wakes."""
+    n = 0
+    if wide is None or wide.index[d] < 0:
+        c = E[d, CELL]
+        ncx = gi[0]
+        cy = c // ncx
+        cx = c - cy * ncx
+        for ox in range(-1, 2):
+            nxc, sx = neighbour(cx, ox, ncx, gi[2] != 0)
+            if nxc < 0:
+                continue
+            for oy in range(-1, 2):
+                nyc, sy = neighbour(cy, oy, gi[1], gi[3] != 0)
+                if nyc < 0:
+                    continue
+                m = head[nxc + ncx * nyc]
+                while m >= 0:
+                    if m != d:
+                        out[n, 0] = m
+                        out[n, 1] = sx
+                        out[n, 2] = sy
+                        n += 1
+                    m = nxt[m]
+        if wide is not None:
+            m = wide.bhead[c]
+            while m >= 0:
+                out[n, 0] = wide.disk[wide.nk[m]]
+                out[n, 1] = -wide.nsx[m]
+                out[n, 2] = -wide.nsy[m]
+                n += 1
+                m = wide.nnext[m]
+        return n
+    k = wide.index[d]
+    ncx = gi[0]
+    for v in range(wide.rect[k, 2], wide.rect[k, 3] + 1):
+        ky = v // gi[1] if gi[3] != 0 else 0
+        for u in range(wide.rect[k, 0], wide.rect[k, 1] + 1):
+            kx = u // ncx if gi[2] != 0 else 0
+            c = (u - kx * ncx) + ncx * (v - ky * gi[1])
+            j = head[c]
+            while j >= 0:
+                out[n, 0] = j
+                out[n, 1] = kx
+                out[n, 2] = ky
+                n += 1
+                j = nxt[j]
+            m = wide.bhead[c]
+            while m >= 0:
+                kk = wide.nk[m]
+                sx = kx - wide.nsx[m]
+                sy = ky - wide.nsy[m]
+                if kk != k and -1 <= sx <= 1 and -1 <= sy <= 1:
+                    j = wide.disk[kk]
+                    seen = False
+                    for q in range(n):
+                        if out[q, 0] == j and out[q, 1] == sx and out[q, 2] == sy:
+                            seen = True
+                            break
+                    if not seen:
+                        out[n, 0] = j
+                        out[n, 1] = sx
+                        out[n, 2] = sy
+                        n += 1
+                m = wide.nnext[m]
+    return n
+
+
+@njit
+def block(d, E, gi, wide):
+    """The block of cells ``(u0, u1, v0, v1)`` whose wall segments disk ``d`` meets, and
+    whether it is a wide disk's footprint (in unwrapped cells; its cell for a narrow
+    disk)."""
+    if wide is None or wide.index[d] < 0:
+        c = E[d, CELL]
+        v = c // gi[0]
+        u = c - v * gi[0]
+        return u, u, v, v, False
+    k = wide.index[d]
+    return wide.rect[k, 0], wide.rect[k, 1], wide.rect[k, 2], wide.rect[k, 3], True
+
+
+def near_rows(n, gi, wide) -> int:
+    """Rows enough for :func:`near` with ``n`` disks on the grid ``gi``: each disk
+    once per image of its cell in a 3x3 block (three on an axis of one cell, two on a
+    periodic axis of two), and each wide disk in up to nine images."""
+    images = 1
+    for axis in range(2):
+        cells = int(gi[axis])
+        images *= 3 if cells == 1 else (2 if cells == 2 else 1)
+    return n * images + (0 if wide is None else 9 * len(wide.disk))
+
+
 @kernel
 def first_overlap(pos, rad, gi, gf, head, nxt, wide, tol):
     """The first pair ``(i, j, distance)`` of a wide disk and a disk (narrow or wide)
@@ -280,14 +386,15 @@ def _work(d, area, s, narrow_d, margin):
     return float(work)
 
 
-def choose(rad, width, height, periodic, margin, force=False):
+def choose(rad, width, height, periodic, margin, force=False, extra=0.0):
     """The narrow diameter of the grid (cells sized for disks up to it, wider disks
     wide), or ``None`` for the uniform grid: from an estimate of the work of
     predictions (:func:`_work`) over candidate splits, the uniform grid unless a split
     is estimated at least 30 % cheaper (``force``: the cheapest split whatever).  On a
     periodic axis a wide disk's footprint and two cells must fit in the period (so
     that a footprint holds one image of each cell, and the images of two footprints
-    over one cell are at most a period apart).  ``None`` also where no split fits."""
+    over one cell are at most a period apart), its margin widened by ``extra`` (the
+    gap of disks at rest).  ``None`` also where no split fits."""
     d = 2.0 * np.asarray(rad, float)
     dmax = float(d.max())
     if not force and dmax < MIN_RATIO * float(d.min()):
@@ -303,7 +410,7 @@ def choose(rad, width, height, periodic, margin, force=False):
                 default=math.inf)
     for dn in sizes[sizes < dmax]:
         s = max(float(dn) * (1.0 + margin), dilute)
-        half = 0.5 * float(dn) + margin * (s + float(dn))
+        half = 0.5 * float(dn) + margin * (s + float(dn)) + extra
         if 2.0 * (0.5 * dmax + half) + 2.0 * s >= limit:
             continue
         work = _work(d, area, s, float(dn), margin)

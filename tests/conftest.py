@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 
 import numpy as np
@@ -94,3 +95,32 @@ def overlaps(sim, tol=1e-9):
     contact = r[:, None] + r[None, :]
     bad = np.triu(dist < contact * (1 - tol), k=1)
     return np.argwhere(bad)
+
+
+def smallest_gap(sim) -> float:
+    """The smallest gap between two disks over every pair and every image (through the
+    sliding boundary at the current offset), relative to their contact distance."""
+    p, r = sim.positions, sim.radii
+    width, height = sim.box.width, sim.box.height
+    worst = math.inf
+    for sy in (-1, 0, 1):
+        dx = p[:, None, 0] - p[None, :, 0] - sy * sim.shear_offset
+        dx -= width * np.floor(dx / width + 0.5)
+        dy = p[:, None, 1] - p[None, :, 1] - sy * height
+        contact = r[:, None] + r[None, :]
+        gap = (np.hypot(dx, dy) - contact) / contact
+        if sy == 0:
+            np.fill_diagonal(gap, np.inf)
+        worst = min(worst, float(gap.min()))
+    return worst
+
+
+def sheared_gap(p, q, box, offset):
+    """The smallest centre distance of ``p`` to the images of ``q`` in a box sheared
+    at ``offset`` (the nearest image along x, one box up, none or one down)."""
+    best = np.inf
+    for sy in (-1, 0, 1):
+        dx = p[0] - (q[0] + sy * offset)
+        dx -= box.width * np.floor(dx / box.width + 0.5)
+        best = min(best, np.hypot(dx, p[1] - (q[1] + sy * box.height)))
+    return best

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import seed_of
+from conftest import seed_of, sheared_gap
 from edmd2d.reference import ReferenceSimulation
 
 
@@ -31,17 +31,6 @@ def _offsets(width, ncx):
             np.nextafter(width, 0.0), 0.37 * width]
 
 
-def _gap(p, q, box, offset):
-    """The smallest centre distance of ``p`` to the images of ``q`` in a box sheared
-    at ``offset`` (the nearest image along x, one box up, none or one down)."""
-    best = np.inf
-    for sy in (-1, 0, 1):
-        dx = p[0] - (q[0] + sy * offset)
-        dx -= box.width * np.floor(dx / box.width + 0.5)
-        best = min(best, np.hypot(dx, p[1] - (q[1] + sy * box.height)))
-    return best
-
-
 def _system(rng, n, box, offset):
     """Up to ``n`` disks (radii 0.3-0.5, masses 0.5-2) placed at random where they
     overlap no other disk through the sliding boundary at ``offset``, with Gaussian
@@ -52,7 +41,7 @@ def _system(rng, n, box, offset):
             break
         r = rng.uniform(0.3, 0.5)
         p = rng.uniform([0.0, 0.0], [box.width, box.height])
-        if all(_gap(p, q, box, offset) >= r + s for q, s in zip(pos, rad)):
+        if all(sheared_gap(p, q, box, offset) >= r + s for q, s in zip(pos, rad)):
             pos.append(p)
             rad.append(r)
     return (np.array(pos), rng.normal(size=(len(pos), 2)), np.array(rad),

@@ -18,27 +18,9 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import seed_of
+from conftest import seed_of, smallest_gap
 from edmd2d import checkpoint, theory
 from edmd2d.reference import ReferenceSimulation
-
-
-def smallest_gap(sim) -> float:
-    """The smallest gap between two disks over every pair and every image (through the
-    sliding boundary at the current offset), relative to their contact distance."""
-    p, r = sim.positions, sim.radii
-    width, height = sim.box.width, sim.box.height
-    worst = math.inf
-    for sy in (-1, 0, 1):
-        dx = p[:, None, 0] - p[None, :, 0] - sy * sim.shear_offset
-        dx -= width * np.floor(dx / width + 0.5)
-        dy = p[:, None, 1] - p[None, :, 1] - sy * height
-        contact = r[:, None] + r[None, :]
-        gap = (np.hypot(dx, dy) - contact) / contact
-        if sy == 0:
-            np.fill_diagonal(gap, np.inf)
-        worst = min(worst, float(gap.min()))
-    return worst
 
 
 def peculiar_energy(sim) -> float:

@@ -1,19 +1,21 @@
 """Wide disks (``Simulation(grid=...)``, ``_engine/wide.py``): disks far wider than
 the grid's cells, listed in every cell near them.  The engine on that grid against
 the brute-force reference event for event, with every physics family it runs (heated
-walls and a thermostat, restitution, rough disks, gravity, growth); against
+walls and a thermostat, restitution, rough disks, gravity, growth, shear; disks at rest
+in ``test_reference_resting.py``); against
 the uniform grid over longer runs; the automatic choice; continuations; refusals."""
 
 from __future__ import annotations
 
 import copy
+import math
 import warnings
 
 import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import overlaps, seed_of
+from conftest import overlaps, seed_of, sheared_gap, smallest_gap
 from edmd2d.reference import ReferenceSimulation
 
 BOX_KINDS = [(True, True), (False, False), (True, False), (False, True)]
@@ -290,7 +292,6 @@ def test_growth_past_what_the_box_fits_falls_back_to_the_uniform_grid():
 @pytest.mark.parametrize("kwargs, match", [
     (dict(grid="hierarchical"), "grid must be"),
     (dict(grid="wide", cell_size=20.0), "cell_size"),
-    (dict(grid="wide", shear_rate=0.1), "shear"),
 ])
 def test_bad_grids_are_refused(kwargs, match):
     gas = _mixture(1, n=40, big=2, ratio=4.0)
@@ -339,3 +340,151 @@ def test_a_bed_with_a_wide_intruder_settles_on_the_wide_grid():
     assert sim.resting.all()
     assert len(overlaps(sim)) == 0
     assert sim.total_energy() + sim.dissipated_energy() == pytest.approx(e1, abs=1e-9)
+
+
+# ---------------------------------------------------------------- under shear
+def _sheared(seed):
+    """A sheared box 13-18 wide and 10-14 high with 25-50 disks: one to three of radius
+    1.1-1.6, the others of radius 0.5 (odd seeds) or 0.3-0.5, placed where they
+    overlap nothing through the sliding boundary at an offset of 0, just below the
+    width or at random; the rate 0.3, -0.8, 2.5 or -6 (up to 6 cells per time unit)."""
+    rng = np.random.default_rng(seed_of(990) + seed)
+    box = ed.Box(rng.uniform(13.0, 18.0), rng.uniform(10.0, 14.0))
+    offset = (0.0, np.nextafter(box.width, 0.0), rng.uniform(0.0, box.width))[seed % 3]
+    big, n = int(rng.integers(1, 4)), int(rng.integers(25, 50))
+    pos, rad = [], []
+    for _ in range(50_000):
+        if len(pos) == n:
+            break
+        r = (rng.uniform(1.1, 1.6) if len(pos) < big
+             else 0.5 if seed % 2 else rng.uniform(0.3, 0.5))
+        p = rng.uniform([0.0, 0.0], [box.width, box.height])
+        if all(sheared_gap(p, q, box, offset) >= r + s for q, s in zip(pos, rad)):
+            pos.append(p)
+            rad.append(r)
+    rate = (0.3, -0.8, 2.5, -6.0)[seed % 4]
+    return (box, offset, rate, np.array(pos), rng.normal(size=(len(pos), 2)),
+            np.array(rad), rng.uniform(0.5, 2.0, len(pos)))
+
+
+@pytest.mark.parametrize("seed", range(24))
+def test_sheared_mixtures_as_the_reference(seed):
+    """Wide disks seen through the sliding boundary: their rows across it are listed
+    in the columns where their images are, one column more for the offset's slide
+    within a cell, and listed afresh at each slide.  The engine on that grid against
+    the reference over 30 collisions, many of them with a wide disk or through the
+    boundary, as the images slide by up to 50 cells.  (The largest difference of an
+    event time measured in these runs is 2e-13.)"""
+    box, offset, rate, pos, vel, rad, mass = _sheared(seed)
+    model = dict(restitution=0.7, tc=0.05) if seed % 5 == 4 else {}
+    sim = ed.Simulation(pos, vel, rad, mass, box=box, shear_rate=rate, shear_offset=offset,
+                        grid="wide", **model)
+    assert sim._state.wide is not None
+    sim._record_events(10_000)
+    ref = ReferenceSimulation(pos, vel, rad, mass, box=box, shear_rate=rate,
+                              shear_offset=offset, **model)
+    sim.advance(until=5.0, collisions=30)
+    ref.advance(until=5.0, collisions=30)
+    got = _assert_as_reference(sim, ref)
+    assert sim.shear_offset == pytest.approx(ref.offset, abs=1e-8)
+    np.testing.assert_allclose(sim.unwrapped_positions, ref.unwrapped_positions, rtol=0,
+                               atol=1e-8)
+    assert len(got) == 30 or sim.time == 5.0
+
+
+def test_the_sheared_mixtures_meet_wide_disks_through_the_boundary():
+    """Across the systems above, wide disks collide many times, the images slide by
+    hundreds of cells, and wide disks leave through the top or bottom."""
+    wide_hits = slides = exits = 0
+    for seed in range(24):
+        box, offset, rate, pos, vel, rad, mass = _sheared(seed)
+        sim = ed.Simulation(pos, vel, rad, mass, box=box, shear_rate=rate,
+                            shear_offset=offset, grid="wide")
+        sim._record_events(10_000)
+        sim.advance(until=5.0, collisions=30)
+        wide = rad > 1.0
+        wide_hits += sum(1 for _, kind, i, j in sim._recorded_events()
+                         if kind == "disk" and (wide[i] or wide[j]))
+        slides += abs(int(sim._state.shear_slides[0]))
+        exits += int(np.round(np.abs(sim.unwrapped_positions[wide, 1]
+                                     - sim.positions[wide, 1]) / box.height).sum())
+    assert wide_hits > 50
+    assert slides > 200
+    assert exits > 0
+
+
+@pytest.mark.parametrize("rate", [0.5, -3.0])
+def test_a_sheared_mixture_on_the_wide_grid_keeps_its_books(rate):
+    """500 disks with 1 % ten times wider, sheared (the automatic choice takes the wide
+    grid): no overlap through the sliding boundary at any of 40 checks over 8x10^4
+    collisions, the peculiar momentum holds (the total y momentum is zero, so
+    ``d/dt sum m u_x = -rate P_y`` vanishes), and the work of the shear stress is the
+    change of the peculiar energy to rounding."""
+    rad = np.full(500, 0.5)
+    rad[:5] = 5.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        gas = ed.random_gas(500, 0.35, radii=rad, seed=seed_of(991))
+    sim = ed.Simulation(gas.positions, gas.velocities, gas.radii, box=gas.box,
+                        shear_rate=rate)
+    assert sim._state.wide is not None and len(sim._state.wide.disk) == 5
+    momentum = (sim.masses[:, None] * sim.peculiar_velocities).sum(axis=0)
+    worst = math.inf
+    for _ in range(40):
+        sim.advance(collisions=2000)
+        worst = min(worst, smallest_gap(sim))
+    assert worst > -1e-12
+    u = sim.peculiar_velocities
+    drift = (sim.masses[:, None] * u).sum(axis=0) - momentum
+    assert np.abs(drift).max() < 1e-12 * float(np.abs(sim.masses[:, None] * u).sum())
+    energy = 0.5 * float(np.sum(sim.masses[:, None] * u * u))
+    m = sim.measure(5.0, blocks=2)
+    u = sim.peculiar_velocities
+    gained = 0.5 * float(np.sum(sim.masses[:, None] * u * u)) - energy
+    work = -rate * sim.box.area * m.duration * m.pressure_xy
+    assert abs(gained - work) <= 1e-11 * energy
+
+
+def test_a_sheared_mixture_continues_bit_identically_on_the_wide_grid(tmp_path):
+    """In pieces and through a checkpoint, a sheared mixture on the wide grid runs as
+    in one call, bit for bit (the wide lists across the boundary are rebuilt from the
+    slides saved)."""
+    rad = np.full(300, 0.5)
+    rad[:3] = 4.0
+
+    def gas():
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            g = ed.random_gas(300, 0.35, radii=rad, seed=seed_of(992))
+        return ed.Simulation(g.positions, g.velocities, g.radii, box=g.box,
+                             shear_rate=-1.3, grid="wide")
+
+    whole = gas()
+    whole.advance(until=12.0)
+    pieces = gas()
+    for t in np.linspace(0.0, 12.0, 14)[1:]:
+        pieces.advance(until=float(t))
+    restarted = gas()
+    restarted.advance(until=5.0)
+    ed.checkpoint.save(restarted, tmp_path / "half.edmd2d")
+    restarted = ed.checkpoint.load(tmp_path / "half.edmd2d")
+    restarted.advance(until=12.0)
+    for other in (pieces, restarted):
+        assert other._state.wide is not None
+        assert np.array_equal(other.positions, whole.positions)
+        assert np.array_equal(other.velocities, whole.velocities)
+        assert other.counts.collisions == whole.counts.collisions
+
+
+def test_a_sheared_box_too_narrow_for_its_widest_disk_is_refused():
+    """The sliding boundary's collision takes the nearest image along x, so a sheared
+    box stays more than 4 of the largest diameters wide on the wide grid too."""
+    rad = np.full(60, 0.5)
+    rad[0] = 2.5
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        gas = ed.random_gas(60, 0.2, radii=rad, seed=1, aspect=0.8)
+    assert 10.0 < gas.box.width < 20.0 < gas.box.height
+    with pytest.raises(ValueError, match="more than 4 largest diameters"):
+        ed.Simulation(gas.positions, gas.velocities, gas.radii, box=gas.box,
+                      shear_rate=0.5, grid="wide")

@@ -81,18 +81,15 @@ def as_cell_size(cell_size, rad: np.ndarray) -> float | None:
     return cell_size
 
 
-def check_grid(grid, rad: np.ndarray, cell_size, families: dict) -> None:
+def check_grid(grid, rad: np.ndarray, cell_size) -> None:
     """``grid`` is one of "auto", "uniform" and "wide", and "wide" has wide disks to
     list (radii of two sizes at least) and nothing that keeps them out."""
     if not isinstance(grid, str) or grid not in ("auto", "uniform", "wide"):
         raise ValueError(f"grid must be 'auto', 'uniform' or 'wide', got {grid!r}")
     if grid != "wide":
         return
-    others = [name for name, other in (("cell_size", cell_size),
-                                       ("shear", families.get("shear")))
-              if other is not None]
-    if others:
-        raise ValueError(f"grid='wide' does not combine with {others[0]}")
+    if cell_size is not None:
+        raise ValueError("grid='wide' does not combine with cell_size")
     if float(rad.max()) == float(rad.min()):
         raise ValueError("grid='wide' needs disks of more than one size (the wider ones "
                          "are listed in the cells near them)")

@@ -344,6 +344,7 @@ class EngineState:
         grown = self.growth_factor(self.time)
         scale = dmax / (2.0 * float(self.S[:, _layout.R].max()) * grown)
         narrow = self.narrow_diameter(cell_size, self.S[:, _layout.R] * (grown * scale))
+        largest = dmax
         if narrow is not None:  # (the cells hold the narrow disks; wider ones are wide)
             dmax = narrow
         side_min = dmax * (1.0 + _CELL_MARGIN)
@@ -355,14 +356,17 @@ class EngineState:
         ncy = max(1, int(height // side))
         if self.shear is not None:
             # Four columns and three rows at least (see _engine/sheared.py).
+            # (With wide disks, so that two disks in contact are nearer than half a
+            # width: the collision takes the nearest image across the boundary.)
             ncx = max(ncx, 4)
             ncy = max(ncy, 3)
-            if min(width / ncx, height / ncy) < side_min:
+            if (min(width / ncx, height / ncy) < side_min
+                    or min(width / 4.0, height / 3.0) < largest * (1.0 + _CELL_MARGIN)):
                 with about("shear_rate"):
                     raise ValueError(
                         f"a sheared box must be more than 4 largest diameters wide and "
                         f"more than 3 high, got {width:g} x {height:g} for diameter "
-                        f"{dmax:g}")
+                        f"{largest:g}")
         periodic = self.box.periodic
         old_ncx = int(vars(self)["gi"][0]) if "gi" in vars(self) else 0
         self.gi = np.array([ncx, ncy, int(periodic[0]), int(periodic[1])], np.int64)
@@ -403,22 +407,24 @@ class EngineState:
             rest = self.families.get("resting")
             self.wide = _wide.allocate(self.S[:, _layout.R] * (grown * scale), narrow,
                                        self.gi, self.gf,
-                                       reach + (0.0 if rest is None else rest.gap))
+                                       reach + (0.0 if rest is None else rest.gap),
+                                       sheared=self.shear is not None)
             _wide.fill(self.S, self.E, self.gi, self.gf, self.wide, self.head, self.nxt,
-                       self.prv, grown)
+                       self.prv, grown, self.column_shift())
 
     def narrow_diameter(self, cell_size: float | None, radii: np.ndarray) -> float | None:
         """The largest of the diameters ``2 radii`` that the grid's cells are sized
         for, where disks wider than it are listed in their footprints
         (:mod:`._engine.wide`); ``None`` for the uniform grid (a ``cell_size`` given,
-        shear, or radii too alike for it to pay)."""
-        if self.grid_mode == "uniform" or cell_size is not None or self.shear is not None:
+        or radii too alike for it to pay)."""
+        if self.grid_mode == "uniform" or cell_size is not None:
             return None
         box = self.box
         rest = self.families.get("resting")
         narrow = _wide.choose(radii, box.width, box.height, box.periodic, _CELL_MARGIN,
                               force=self.grid_mode == "wide",
-                              extra=0.0 if rest is None else rest.gap)
+                              extra=0.0 if rest is None else rest.gap,
+                              sheared=self.shear is not None)
         if narrow is None and self.grid_mode == "wide" and "gi" not in vars(self):
             # (Refused when the simulation is made; a rebuild later, under growth that
             # made the footprints too wide for the box, falls back to the uniform grid.)
@@ -457,8 +463,10 @@ class EngineState:
         if i < 0 and self.shear is not None:
             i, j, dist = self.first_overlap_across(pos, rad)
         if i < 0 and self.wide is not None:
+            offset = 0.0 if self.shear is None else self.shear_offsets()[0]
             i, j, dist = _wide.first_overlap(pos, rad, self.gi, self.gf, self.head,
-                                             self.nxt, self.wide, OVERLAP_TOL)
+                                             self.nxt, self.wide, OVERLAP_TOL,
+                                             self.column_shift(), offset)
         if i >= 0:
             what = "its own periodic image" if i == j else f"disk {j}"
             contact = rad[i] + rad[j]
@@ -1107,6 +1115,14 @@ class EngineState:
         self.shear_clock[1] = _sheared.next_slide(m, speed > 0.0, w, self.shear_clock, speed)
         if self.shear_flights is None:
             self.shear_flights = np.zeros(3)
+
+    def column_shift(self) -> int:
+        """Under shear the images' offset in whole cells, reduced by the box's columns
+        (``_engine/sheared.py``); -1 without shear."""
+        if self.shear is None:
+            return -1
+        assert self.shear_slides is not None
+        return int(self.shear_slides[0]) % int(self.gi[0])
 
     def shear_offsets(self, t: float | None = None) -> tuple[float, float]:
         """The offset of the images above at ``t`` (default :attr:`time`, not before

@@ -110,8 +110,9 @@ class Simulation(SimulationBase):
         it, so that a few large disks do not slow the many small ones.  ``"auto"``
         keeps the uniform grid unless the largest diameter is at least 2.5 times the
         smallest and an estimate of the work finds the wide grid cheaper.  Wide disks do not
-        combine with shear or a ``cell_size`` (there ``"auto"`` keeps the uniform grid);
-        they come to rest, and hold others, as narrow ones do; under growth, a rebuild after
+        combine with a ``cell_size`` (there ``"auto"`` keeps the uniform grid); they come
+        to rest, hold others and meet through a sheared boundary as narrow ones do; under
+        growth, a rebuild after
         which the wide disks' footprints no longer fit a periodic box makes a uniform grid.
         Every grid gives the same dynamics; runs on different grids differ by rounding.
     species : array_like of int, shape (N,), optional
@@ -284,7 +285,7 @@ class Simulation(SimulationBase):
             growth_family.check_combination(model, g)
         families = _physics.check_registered(
             dataclasses.replace(system, gravity=g, inelastic=not contact.elastic), physics)
-        _checks.check_grid(grid, rad, cell_size, families)
+        _checks.check_grid(grid, rad, cell_size)
         self._state = _state.EngineState(
             box, wall_list, pos, vel, rad, mass, float(t0),
             species=None if species is None else spec, model=model, gravity=g,

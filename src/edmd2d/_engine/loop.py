@@ -534,7 +534,11 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 redo0 = i
                 counts[C_KICKS] += 1
             elif shear is not None and kind == SLIDE:
+                slid = sheared.column_shift(shear, ncx)
                 npred = sheared.slide(shear, gi, gf, head, nxt)
+                if wide is not None:
+                    npred = _wide.slide(npred, slid, sheared.column_shift(shear, ncx), gi,
+                                        wide, shear.rows)
             else:  # CROSS
                 if shear is not None:
                     sheared.flight(i, t, S, invm, shear)
@@ -543,7 +547,8 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                 drift(i, t, S, gravity)
                 if wide is not None and wide.index[i] >= 0:
                     # (A wide disk's footprint changes, or its centre wraps.)
-                    direction = _wide.cross(i, t, aux, S, E, stamp, image, gi, gf, wide)
+                    direction = _wide.cross(i, t, aux, S, E, stamp, image, gi, gf, wide,
+                                            shear)
                     redo0 = i
                 else:
                     c = E[i, CELL]

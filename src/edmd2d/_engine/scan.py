@@ -65,7 +65,7 @@ from .predict import (
     segment_time_accel,
     segment_time_grow,
 )
-from .wide import HIGH, LOW
+from .wide import HIGH, LOW, columns
 
 
 @njit
@@ -254,7 +254,8 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
         return INF
     if wide is not None and wide.index[i] >= 0:
         return _predict_wide(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt, wa,
-                             wb, wstart, wwall, wsx, wsy, gravity, growth, wide, motion)
+                             wb, wstart, wwall, wsx, wsy, gravity, growth, wide, motion,
+                             shear)
     partial = direction >= 0 and not (
         kind_of(E[i, KIND]) == DISK and stamp[E[i, PARTNER]] != E[i, PSTAMP])
     if gravity is None:
@@ -309,7 +310,7 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
         pst = ps
     if wide is not None:
         bd, pd, ad, ps = _scan_wide_list(i, t, x, y, vx, vy, S[i, R], c, S, stamp, gf,
-                                         wide, best, -1, 0, 0, gravity, growth)
+                                         wide, best, -1, 0, 0, gravity, growth, shear)
         if bd < best:
             best = bd
             kind = DISK
@@ -340,7 +341,7 @@ def predict(i, t, direction, S, E, tcand, stamp, gi, gf, head, nxt,
 # --------------------------------------------------------------------------- wide disks
 @njit
 def _scan_wide_list(i, t, x, y, vx, vy, r, c, S, stamp, gf, wide, best, partner, aux,
-                    pst, gravity, growth):
+                    pst, gravity, growth, shear):
     """Earliest contact of the narrow disk ``i`` (at ``x, y`` with velocity ``vx, vy``
     at time ``t``) with the wide disks listed in its cell ``c``, if before ``best``."""
     gxi, gyi = acceleration(i, gravity)
@@ -350,7 +351,7 @@ def _scan_wide_list(i, t, x, y, vx, vy, r, c, S, stamp, gf, wide, best, partner,
         sx = wide.nsx[m]
         sy = wide.nsy[m]
         dtc = _wide_pair(i, j, t, x, y, vx, vy, gxi, gyi, r, -sx, -sy, S, gf, gravity,
-                         growth, best)
+                         growth, shear, best)
         if dtc < best:
             best = dtc
             partner = j
@@ -361,13 +362,19 @@ def _scan_wide_list(i, t, x, y, vx, vy, r, c, S, stamp, gf, wide, best, partner,
 
 
 @njit
-def _wide_pair(i, j, t, x, y, vx, vy, gxi, gyi, r, sx, sy, S, gf, gravity, growth, best):
+def _wide_pair(i, j, t, x, y, vx, vy, gxi, gyi, r, sx, sy, S, gf, gravity, growth, shear,
+               best):
     """Contact time of ``i`` (stored radius ``r``) with the image ``(sx, sy)`` of ``j``
     (as the narrow scan computes it: with gravity's parabola against an immovable
-    disk, or growing radii)."""
+    disk, or growing radii; under shear an image across the sliding boundary, ``sy !=
+    0``, lies ``sy`` offsets along x and moves at ``sy U`` more)."""
     xj, yj = position_at(j, t, S, gravity)
     dx = x - (xj + sx * gf[0])
     dy = y - (yj + sy * gf[1])
+    if shear is not None and sy != 0:
+        dx -= sy * sheared.offset(t, shear)
+        return pair_time(dx, dy, vx - (S[j, VX] + sy * shear.speed), vy - S[j, VY],
+                         r + S[j, R])
     if growth is not None:
         rr = r + S[j, R]
         return pair_time_grow(dx, dy, vx - S[j, VX], vy - S[j, VY],
@@ -380,12 +387,13 @@ def _wide_pair(i, j, t, x, y, vx, vy, gxi, gyi, r, sx, sy, S, gf, gravity, growt
 @njit
 def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, gi, gf,
                     head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner,
-                    aux, pst, gravity, growth, motion, horizon):
+                    aux, pst, gravity, growth, motion, horizon, shear):
     """Earliest contact of wide disk ``i`` (index ``k``, stored radius ``r``) with the
     narrow disks, the wide disks and the wall segments listed in the unwrapped cells
-    ``[u0, u1] x [v0, v1]`` of its footprint; a moving segment (``motion``) searched up
-    to ``horizon`` at the latest, the footprint's next change (a full prediction
-    then takes the search up again)."""
+    ``[u0, u1] x [v0, v1]`` of its footprint (under shear, the rows across the
+    boundary shifted as :func:`.wide.columns` gives them); a moving segment
+    (``motion``) searched up to ``horizon`` at the latest, the footprint's next change
+    (a full prediction then takes the search up again)."""
     f = growth_factor(t, growth)
     dr = 0.0 if growth is None else r * growth.rate
     ncx = gi[0]
@@ -398,12 +406,14 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
     last_best = INF
     last_dt = INF
     last_part = 0
+    slid = -1 if shear is None else sheared.column_shift(shear, ncx)
     for v in range(v0, v1 + 1):
         ky = 0
         if gi[3] != 0:
             ky = v // gi[1]
         cy = v - ky * gi[1]
-        for u in range(u0, u1 + 1):
+        c0, c1 = columns(u0, u1, v, gi, slid)
+        for u in range(c0, c1 + 1):
             kx = 0
             if gi[2] != 0:
                 kx = u // ncx
@@ -412,7 +422,7 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
             j = head[c]
             while j >= 0:
                 dtc = _wide_pair(i, j, t, x, y, vx, vy, gx, gy, r, kx, ky, S, gf, gravity,
-                                 growth, best)
+                                 growth, shear, best)
                 if dtc < best:
                     best = dtc
                     kind = DISK
@@ -430,7 +440,7 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
                     sy = ky - wide.nsy[m]
                     if -1 <= sx <= 1 and -1 <= sy <= 1:
                         dtc = _wide_pair(i, j, t, x, y, vx, vy, gx, gy, r, sx, sy, S, gf,
-                                         gravity, growth, best)
+                                         gravity, growth, shear, best)
                         if dtc < best:
                             best = dtc
                             kind = DISK
@@ -507,7 +517,7 @@ def _moving_listed(u0, u1, v0, v1, gi, wa, wstart, wwall, motion):
 
 @njit
 def _predict_wide(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wstart, wwall,
-                  wsx, wsy, gravity, growth, wide, motion):
+                  wsx, wsy, gravity, growth, wide, motion, shear):
     """:func:`predict` for a wide disk (:mod:`.wide`): its next event from time ``t``.
 
     ``code`` -1: a full prediction (box walls and every cell of its footprint).
@@ -582,13 +592,13 @@ def _predict_wide(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wst
                 best, kind, partner, aux, pst = _scan_footprint(
                     i, k, t, x, y, vx, vy, gx, gy, r, u, u, y0, y1, S, stamp, gi, gf,
                     head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
-                    partner, aux, pst, gravity, growth, motion, first)
+                    partner, aux, pst, gravity, growth, motion, first, shear)
             else:
                 v = y0 if what == LOW else y1
                 best, kind, partner, aux, pst = _scan_footprint(
                     i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, v, v, S, stamp, gi, gf,
                     head, nxt, wa, wb, wstart, wwall, wsx, wsy, wide, best, kind,
-                    partner, aux, pst, gravity, growth, motion, first)
+                    partner, aux, pst, gravity, growth, motion, first, shear)
     else:
         dr = 0.0 if growth is None else r * growth.rate
         best, kind, aux = _box_walls(x, y, vx, vy, gx, gy, r * growth_factor(t, growth), dr,
@@ -596,7 +606,7 @@ def _predict_wide(i, t, code, S, E, tcand, stamp, gi, gf, head, nxt, wa, wb, wst
         best, kind, partner, aux, pst = _scan_footprint(
             i, k, t, x, y, vx, vy, gx, gy, r, x0, x1, y0, y1, S, stamp, gi, gf, head, nxt,
             wa, wb, wstart, wwall, wsx, wsy, wide, best, kind, partner, aux, pst, gravity,
-            growth, motion, first)
+            growth, motion, first, shear)
     if not partial or kind != NONE:
         tcand[i] = t + best
         E[i, KIND] = kind

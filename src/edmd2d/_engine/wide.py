@@ -37,6 +37,16 @@ the box, which is an event of its own (its footprint and every node's shift move
 period, and every prediction against it is invalidated).  Walled axes clamp the
 footprint to the grid; an edge beyond the last cell schedules nothing.
 
+Under shear (:mod:`.sheared`) the images across the top and bottom slide along x by
+the offset ``delta = (k + f) w`` (``k`` the column shift, ``0 <= f <= 1``): a row of
+a footprint across the boundary is listed where the disk's image is, ``k`` columns
+over, with one more column for ``f`` (:func:`columns`), and at each slide (``k``
+steps) those rows are listed afresh and their disks predicted again (:func:`slide`),
+as the narrow disks of the two edge rows are.  The image of a disk listed across the
+boundary lies ``sy`` offsets along x, at ``sy U`` more velocity.  Two disks in contact
+are less than half a width apart (a sheared box is more than four largest diameters
+wide), so their collision takes the nearest image, as the narrow disks' does.
+
 Their predictions are in :mod:`.scan` (``_predict_wide``, ``_scan_wide_list``), beside
 the narrow disks', whose wall scans they share; this module keeps the lists.
 
@@ -54,6 +64,7 @@ import math
 import numpy as np
 
 from .._jit import kernel, njit
+from . import sheared
 from .grid import insert, neighbour, remove
 from .layout import (
     CELL,
@@ -85,6 +96,36 @@ def _slot(k, u, v, wide):
     kw = wide.span[k, 0]
     kh = wide.span[k, 1]
     return wide.base[k] + (u % kw) + kw * (v % kh)
+
+
+@njit(inline="always")
+def columns(u0, u1, v, gi, slid):
+    """The unwrapped columns of row ``v`` of a footprint whose columns are ``[u0,
+    u1]``: those, except across a sheared boundary (``slid >= 0`` the images' column
+    shift, :func:`.sheared.column_shift`; -1 without shear), where the disk's image
+    below (a row above the box) lies ``slid + f`` cells to the left, ``0 <= f <= 1``,
+    and its image above ``slid + f`` to the right: one more column covers ``f``."""
+    if slid < 0:
+        return u0, u1
+    ky = v // gi[1]
+    if ky > 0:
+        return u0 - slid - 1, u1 - slid
+    if ky < 0:
+        return u0 + slid, u1 + slid + 1
+    return u0, u1
+
+
+@njit
+def _list_rows(k, v0, v1, gi, wide, slid, put):
+    """List wide disk ``k`` in (``put``) or take it out of every cell of its footprint's
+    rows ``[v0, v1]``."""
+    for v in range(v0, v1 + 1):
+        c0, c1 = columns(wide.rect[k, 0], wide.rect[k, 1], v, gi, slid)
+        for u in range(c0, c1 + 1):
+            if put:
+                _put(k, u, v, gi, wide)
+            else:
+                _take(k, u, v, wide)
 
 
 @njit
@@ -122,11 +163,12 @@ def _centre_cell(k, gi, wide):
 
 
 @kernel
-def fill(S, E, gi, gf, wide, head, nxt, prv, grown):
+def fill(S, E, gi, gf, wide, head, nxt, prv, grown, slid):
     """List every wide disk in the cells of its footprint (from its stored position,
-    its radius ``grown`` times the stored one) and take it out of the list of disks
-    of its cell, where ``grid.build_cells`` put it.  Every prediction must be made
-    afresh afterwards."""
+    its radius ``grown`` times the stored one; across a sheared boundary shifted by
+    the images' column shift ``slid``, -1 without shear) and take it out of the list of
+    disks of its cell, where ``grid.build_cells`` put it.  Every prediction must be
+    made afresh afterwards."""
     wide.bhead[:] = -1
     wide.ncell[:] = -1
     for k in range(wide.disk.shape[0]):
@@ -139,9 +181,7 @@ def fill(S, E, gi, gf, wide, head, nxt, prv, grown):
         wide.rect[k, 1] = x1
         wide.rect[k, 2] = y0
         wide.rect[k, 3] = y1
-        for v in range(y0, y1 + 1):
-            for u in range(x0, x1 + 1):
-                _put(k, u, v, gi, wide)
+        _list_rows(k, y0, y1, gi, wide, slid, True)
         E[i, CELL] = _centre_cell(k, gi, wide)
 
 
@@ -155,12 +195,15 @@ def detach(E, wide, head, nxt, prv):
 
 
 @njit
-def cross(i, t, code, S, E, stamp, image, gi, gf, wide):
+def cross(i, t, code, S, E, stamp, image, gi, gf, wide, shear):
     """Carry out wide disk ``i``'s crossing ``code`` at ``t`` (the disk already moved
     there): grow or shrink its footprint by a column or row, or wrap its centre into
-    the box.  Returns the code for a partial prediction, or -1 for a full one (a wrap,
-    after which every prediction against ``i`` is stale: its stamp is raised)."""
+    the box (under shear, through the top or bottom: its x and x velocity change as
+    a narrow disk's, :func:`.sheared.wrap`, and its footprint is listed afresh).
+    Returns the code for a partial prediction, or -1 for a full one (a wrap, after
+    which every prediction against ``i`` is stale: its stamp is raised)."""
     k = wide.index[i]
+    slid = -1 if shear is None else sheared.column_shift(shear, gi[0])
     what = code >> 2
     direction = code & 3
     axis = direction >> 1
@@ -172,21 +215,27 @@ def cross(i, t, code, S, E, stamp, image, gi, gf, wide):
     if what == WRAP:
         n = gi[axis]
         shift = 1 if up else -1
+        _list_rows(k, y0, y1, gi, wide, slid, False)
         if axis == 0:
             S[i, X] -= shift * gf[0]
         else:
             S[i, Y] -= shift * gf[1]
         image[i, axis] += shift
-        # The same cells, one period lower (or higher) in unwrapped coordinates: take
-        # the nodes out and put them back under the new numbering.
-        for v in range(y0, y1 + 1):
-            for u in range(x0, x1 + 1):
-                _take(k, u, v, wide)
-        wide.rect[k, 2 * axis] -= shift * n
-        wide.rect[k, 2 * axis + 1] -= shift * n
-        for v in range(wide.rect[k, 2], wide.rect[k, 3] + 1):
-            for u in range(wide.rect[k, 0], wide.rect[k, 1] + 1):
-                _put(k, u, v, gi, wide)
+        if shear is not None and axis == 1:
+            # (x moves by the images' offset: the footprint is found afresh.)
+            sheared.wrap(i, t, up, S, image, gi, gf, shear)
+            reach = S[i, R] + wide.half
+            u0, u1 = footprint(S[i, X], reach, gf[2], gi[0], True)
+            v0, v1 = footprint(S[i, Y], reach, gf[3], gi[1], True)
+            wide.rect[k, 0] = u0
+            wide.rect[k, 1] = u1
+            wide.rect[k, 2] = v0
+            wide.rect[k, 3] = v1
+        else:
+            # The same cells, one period lower (or higher) in unwrapped coordinates.
+            wide.rect[k, 2 * axis] -= shift * n
+            wide.rect[k, 2 * axis + 1] -= shift * n
+        _list_rows(k, wide.rect[k, 2], wide.rect[k, 3], gi, wide, slid, True)
         stamp[i] += 1
         E[i, CELL] = _centre_cell(k, gi, wide)
         return -1
@@ -195,22 +244,55 @@ def cross(i, t, code, S, E, stamp, image, gi, gf, wide):
     new = old + (1 if up else -1)
     grown = (what == HIGH) == up
     if axis == 0:
-        if grown:
-            for v in range(y0, y1 + 1):
-                _put(k, new, v, gi, wide)
-        else:
-            for v in range(y0, y1 + 1):
-                _take(k, old, v, wide)
+        # Each row gains or loses the one column by which its range moves.
+        n0 = new if what == LOW else x0
+        n1 = new if what == HIGH else x1
+        for v in range(y0, y1 + 1):
+            a0, a1 = columns(x0, x1, v, gi, slid)
+            b0, b1 = columns(n0, n1, v, gi, slid)
+            for u in range(min(a0, b0), max(a1, b1) + 1):
+                before = a0 <= u <= a1
+                after = b0 <= u <= b1
+                if after and not before:
+                    _put(k, u, v, gi, wide)
+                elif before and not after:
+                    _take(k, u, v, wide)
     else:
-        if grown:
-            for u in range(x0, x1 + 1):
+        c0, c1 = columns(x0, x1, new if grown else old, gi, slid)
+        for u in range(c0, c1 + 1):
+            if grown:
                 _put(k, u, new, gi, wide)
-        else:
-            for u in range(x0, x1 + 1):
+            else:
                 _take(k, u, old, wide)
     wide.rect[k, col] = new
     E[i, CELL] = _centre_cell(k, gi, wide)
     return code
+
+
+@njit
+def slide(n, slid_old, slid_new, gi, wide, rows):
+    """At a slide of the sheared boundary (the images' column shift from ``slid_old``
+    to ``slid_new``): list afresh the rows across the boundary of every wide disk whose
+    footprint crosses it, and add those disks to the ``n`` disks of ``rows`` to be
+    predicted afresh (the cells they meet there have changed).  Returns how many."""
+    ncy = gi[1]
+    for k in range(wide.disk.shape[0]):
+        v0 = wide.rect[k, 2]
+        v1 = wide.rect[k, 3]
+        if v0 >= 0 and v1 < ncy:
+            continue
+        for v in range(v0, v1 + 1):
+            if 0 <= v < ncy:
+                continue
+            c0, c1 = columns(wide.rect[k, 0], wide.rect[k, 1], v, gi, slid_old)
+            for u in range(c0, c1 + 1):
+                _take(k, u, v, wide)
+            c0, c1 = columns(wide.rect[k, 0], wide.rect[k, 1], v, gi, slid_new)
+            for u in range(c0, c1 + 1):
+                _put(k, u, v, gi, wide)
+        rows[n] = wide.disk[k]
+        n += 1
+    return n
 
 
 @njit
@@ -320,21 +402,24 @@ def near_rows(n, gi, wide) -> int:
 
 
 @kernel
-def first_overlap(pos, rad, gi, gf, head, nxt, wide, tol):
+def first_overlap(pos, rad, gi, gf, head, nxt, wide, tol, slid, offset):
     """The first pair ``(i, j, distance)`` of a wide disk and a disk (narrow or wide)
     listed in its footprint's cells that overlap by more than ``tol`` of their contact
-    distance; ``(-1, -1, 0.0)`` for none.  (Narrow pairs are checked on the cells.)"""
+    distance; ``(-1, -1, 0.0)`` for none.  (Narrow pairs are checked on the cells.)
+    Under shear ``slid`` is the images' column shift and ``offset`` their offset (-1 and
+    0 without)."""
     ncx = gi[0]
     for k in range(wide.disk.shape[0]):
         i = wide.disk[k]
         for v in range(wide.rect[k, 2], wide.rect[k, 3] + 1):
             ky = v // gi[1] if gi[3] != 0 else 0
-            for u in range(wide.rect[k, 0], wide.rect[k, 1] + 1):
+            c0, c1 = columns(wide.rect[k, 0], wide.rect[k, 1], v, gi, slid)
+            for u in range(c0, c1 + 1):
                 kx = u // ncx if gi[2] != 0 else 0
                 c = (u - kx * ncx) + ncx * (v - ky * gi[1])
                 j = head[c]
                 while j >= 0:
-                    dx = pos[i, 0] - (pos[j, 0] + kx * gf[0])
+                    dx = pos[i, 0] - (pos[j, 0] + kx * gf[0] + ky * offset)
                     dy = pos[i, 1] - (pos[j, 1] + ky * gf[1])
                     d = math.sqrt(dx * dx + dy * dy)
                     if d < (rad[i] + rad[j]) * (1.0 - tol):
@@ -345,7 +430,8 @@ def first_overlap(pos, rad, gi, gf, head, nxt, wide, tol):
                     kk = wide.nk[m]
                     if kk != k:
                         j = wide.disk[kk]
-                        dx = pos[i, 0] - (pos[j, 0] + (kx - wide.nsx[m]) * gf[0])
+                        dx = pos[i, 0] - (pos[j, 0] + (kx - wide.nsx[m]) * gf[0]
+                                          + (ky - wide.nsy[m]) * offset)
                         dy = pos[i, 1] - (pos[j, 1] + (ky - wide.nsy[m]) * gf[1])
                         d = math.sqrt(dx * dx + dy * dy)
                         if d < (rad[i] + rad[j]) * (1.0 - tol):
@@ -386,7 +472,7 @@ def _work(d, area, s, narrow_d, margin):
     return float(work)
 
 
-def choose(rad, width, height, periodic, margin, force=False, extra=0.0):
+def choose(rad, width, height, periodic, margin, force=False, extra=0.0, sheared=False):
     """The narrow diameter of the grid (cells sized for disks up to it, wider disks
     wide), or ``None`` for the uniform grid: from an estimate of the work of
     predictions (:func:`_work`) over candidate splits, the uniform grid unless a split
@@ -394,7 +480,8 @@ def choose(rad, width, height, periodic, margin, force=False, extra=0.0):
     periodic axis a wide disk's footprint and two cells must fit in the period (so
     that a footprint holds one image of each cell, and the images of two footprints
     over one cell are at most a period apart), its margin widened by ``extra`` (the
-    gap of disks at rest).  ``None`` also where no split fits."""
+    gap of disks at rest; under shear, ``sheared``, with one more column, where the
+    images slide).  ``None`` also where no split fits."""
     d = 2.0 * np.asarray(rad, float)
     dmax = float(d.max())
     if not force and dmax < MIN_RATIO * float(d.min()):
@@ -411,7 +498,7 @@ def choose(rad, width, height, periodic, margin, force=False, extra=0.0):
     for dn in sizes[sizes < dmax]:
         s = max(float(dn) * (1.0 + margin), dilute)
         half = 0.5 * float(dn) + margin * (s + float(dn)) + extra
-        if 2.0 * (0.5 * dmax + half) + 2.0 * s >= limit:
+        if 2.0 * (0.5 * dmax + half) + (3.0 if sheared else 2.0) * s >= limit:
             continue
         work = _work(d, area, s, float(dn), margin)
         if work < best:
@@ -421,15 +508,16 @@ def choose(rad, width, height, periodic, margin, force=False, extra=0.0):
     return split
 
 
-def allocate(rad, narrow, gi, gf, half):
+def allocate(rad, narrow, gi, gf, half, sheared=False):
     """A ``layout.Wide`` for the disks wider than ``narrow`` (their footprints to be
-    filled by :func:`fill`)."""
+    filled by :func:`fill`; under shear, ``sheared``, a row across the boundary has
+    one more column)."""
     index = np.full(len(rad), -1, np.int64)
     disk = np.flatnonzero(2.0 * np.asarray(rad) > narrow).astype(np.int64)
     index[disk] = np.arange(len(disk))
     reach = np.asarray(rad)[disk] + half
     span = np.empty((len(disk), 2), np.int64)
-    span[:, 0] = np.floor(2.0 * reach / gf[2]).astype(np.int64) + 2
+    span[:, 0] = np.floor(2.0 * reach / gf[2]).astype(np.int64) + (3 if sheared else 2)
     span[:, 1] = np.floor(2.0 * reach / gf[3]).astype(np.int64) + 2
     size = span[:, 0] * span[:, 1]
     base = np.zeros(len(disk), np.int64)

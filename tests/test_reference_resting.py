@@ -288,3 +288,25 @@ def test_a_wide_disk_woken_wakes_the_disk_it_holds():
     woken = [e for e in events if e[1] == "wake" and 1.0 < e[0] < 2.0]
     assert [e[2] for e in woken] == [0, 1] and woken[0][0] == woken[1][0]
     assert any(e[1] == "rest" and e[2] == 0 and e[0] > 2.0 for e in events)
+
+
+def test_a_wide_disk_rests_on_a_floor_across_a_periodic_edge():
+    """A floor segment spans the whole period of a box periodic along x; a wide disk
+    falls on it at the seam, x = 0.05, where the floor's image one period to the left
+    ends.  Both images are within its gap (a rest height of 0.05), and the flat side
+    under it holds it: it comes to rest as in the reference."""
+    box = ed.Box(8.0, 6.0, periodic=(True, False))
+    walls = [ed.Wall((0.0, 1.0), (8.0, 1.0))]
+    pos = [[0.05, 2.6]] + [[x, 1.6] for x in np.linspace(2.5, 6.5, 9)]
+    rad = [1.0] + [0.25] * 9
+    sim = ed.Simulation(pos, np.zeros((10, 2)), rad, box=box, walls=walls,
+                        gravity=(0.0, -1.0), grid="wide", rest_height=0.05, **MODEL)
+    sim._record_events(100_000)
+    ref = ReferenceSimulation(pos, np.zeros((10, 2)), rad, box=box, walls=walls,
+                              gravity=(0.0, -1.0), resting=sim._state.families["resting"],
+                              tc=float(sim._state.model.tc), **MODEL)
+    assert sim._state.wide is not None and sim._state.wide.index[0] >= 0
+    sim.advance(until=8.0)
+    ref.advance(until=8.0)
+    events = _assert_same_run(sim, ref)
+    assert any(e[1] == "rest" and e[2] == 0 for e in events)

@@ -488,3 +488,62 @@ def test_a_sheared_box_too_narrow_for_its_widest_disk_is_refused():
     with pytest.raises(ValueError, match="more than 4 largest diameters"):
         ed.Simulation(gas.positions, gas.velocities, gas.radii, box=gas.box,
                       shear_rate=0.5, grid="wide")
+
+
+def test_two_wide_disks_meet_through_the_boundary_two_widths_over():
+    """Near opposite corners with the offset just below the width, a wide disk meets
+    the image of another one box up and (offset included) two box widths over: the
+    image each finds in their shared cells.  The same events as the reference."""
+    pos = [[0.1, 9.5], [15.9, 1.0]]
+    vel = [[0.0, 1.0], [0.0, 0.0]]
+    rad = [1.5, 1.5]
+    for y in (4.0, 5.0, 6.0, 7.0):
+        for x in np.linspace(1.0, 15.0, 10):
+            pos.append([x, y])
+            vel.append([0.0, 0.0])
+            rad.append(0.3)
+    box = ed.Box(16.0, 12.0)
+    sim = ed.Simulation(pos, vel, rad, box=box, shear_rate=0.001, shear_offset=15.9,
+                        grid="wide")
+    assert list(sim._state.wide.disk) == [0, 1]
+    sim._record_events(1000)
+    ref = ReferenceSimulation(pos, vel, rad, box=box, shear_rate=0.001, shear_offset=15.9)
+    sim.advance(until=3.0)
+    ref.advance(until=3.0)
+    got = _assert_as_reference(sim, ref)
+    assert got[0][1:] == ("disk", 0, 1) and got[0][0] == pytest.approx(0.514, abs=1e-3)
+
+
+def test_a_still_sheared_box_lists_its_wide_disks_where_the_images_are_when_it_moves():
+    """Disks at rest under shear: a run to a time ends with no event, and the images'
+    offset is then restarted at that time, cells away from where the last slide left
+    it.  A wide disk's rows across the boundary are listed afresh there: set moving, a
+    narrow disk meets the wide one's image as in a fresh simulation of the same
+    state and in the reference."""
+    rad = [1.5, 0.3]
+    pos = [[8.0, 10.9], [11.9, 0.75]]
+    for x in np.linspace(1.0, 15.0, 8):
+        for y in (4.5, 6.0, 7.5):
+            pos.append([x, y])
+            rad.append(0.3)
+    pos = np.array(pos)
+    box = ed.Box(16.0, 12.0)
+    rate = 0.05
+    sim = ed.Simulation(pos, np.zeros_like(pos), rad, box=box, shear_rate=rate,
+                        grid="wide")
+    sim.advance(until=(9.0 + 7 * 16.0) / (rate * 12.0))  # (an offset of 4.5 cells)
+    vel = np.zeros_like(pos)
+    vel[1] = (2.0, -0.3)
+    sim.set_velocities(vel)
+    fresh = ed.Simulation(sim.positions, vel, rad, box=box, shear_rate=rate,
+                          shear_offset=sim.shear_offset, grid="wide", time=sim.time)
+    ref = ReferenceSimulation(sim.positions, vel, rad, box=box, shear_rate=rate,
+                              shear_offset=sim.shear_offset, time=sim.time)
+    t_end = sim.time + 2.0
+    for s in (sim, fresh):
+        s._record_events(1000)
+        s.advance(until=t_end)
+    ref.advance(until=t_end)
+    for s in (sim, fresh):
+        _assert_as_reference(s, ref)
+    assert _canonical(sim._recorded_events())[0][1:] == ("disk", 0, 1)

@@ -887,14 +887,15 @@ class EngineState:
         if supports is None or frozen is None or t_static is None:
             return None
         rest = self.families["resting"]
+        radii = self.S[:, _layout.R]
+        room = _resting.candidates(float(radii.max()), float(radii.min()))
         return _layout.Rest(rest.speed, rest.gap, rest.wake, rest.press, rest.soft,
                             rest.instant, supports,
                             frozen, t_static,
                             np.empty(len(self.S), np.int32),
-                            np.empty(_resting.CANDIDATES, np.int64),
-                            np.empty(_resting.CANDIDATES),
-                            np.empty((2, _wide.near_rows(len(self.S), self.gi, self.wide), 3),
-                                     np.int32),
+                            np.empty(room, np.int64), np.empty(room),
+                            np.empty((2, _wide.near_rows(len(self.S), self.gi, self.wide,
+                                                         len(self.wa)), 3), np.int32),
                             self.log_bundle(), self.order, self.wide)
 
     def first_rest_check(self, after: float | None = None) -> float | None:
@@ -1282,8 +1283,13 @@ class EngineState:
             self.time = t_end
             if status == _layout.NO_EVENTS and self.shear is not None:
                 # (Slides were not processed up to t_end: restart the offset's clock
-                # there, and the predictions of its columns.)
+                # there, list the wide disks' rows across the boundary where the
+                # images now are, and predict afresh.)
+                before = self.column_shift()
                 self.start_shear(self.shear_offsets()[1])
+                if self.wide is not None:
+                    _wide.slide(0, before, self.column_shift(), self.gi, self.wide,
+                                np.empty(len(self.S), np.int64))
                 self.predict_all()
             return
         if status == _layout.REACHED_COLLISIONS:

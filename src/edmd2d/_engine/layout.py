@@ -485,13 +485,13 @@ class Rest(NamedTuple):
     t_static: np.ndarray
     #: int32, shape (N,): room for the cascade of a wake.
     stack: np.ndarray
-    #: int64, shape (``resting.CANDIDATES``,): room for the supports examined.
+    #: int64, shape (``resting.candidates(...)``,): room for the supports examined.
     codes: np.ndarray
-    #: float64, shape (``resting.CANDIDATES``,): their normals' angles from "up".
+    #: float64, shape (``resting.candidates(...)``,): their normals' angles from "up".
     angles: np.ndarray
     #: int32, shape (2, M, 3): room for the disks near a disk (``wide.near``): one
     #: for the cascade of a wake and the flying disks to predict afresh, one for the
-    #: static bodies examined for a support.
+    #: static bodies examined for a support (and the segment images met before them).
     near: np.ndarray
     #: The event log, where rests and wakes are logged as events (``REST``, ``WAKE``).
     log: Log

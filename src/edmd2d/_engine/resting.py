@@ -111,9 +111,17 @@ SEGMENT_SUPPORT = -6  # wall segment ``k``: -6 - k
 #: disk touches (:func:`wedge`): far above the rounding of a contact and far below any
 #: gap a disk crosses at one instant.
 WEDGE_TOUCH = 1e-9
-#: The bodies within the gap examined when a disk is put to rest (a disk touches at
-#: most six others of its size, and a few walls; a wide disk, some 6 r / r_min).
-CANDIDATES = 256
+#: The bodies within the gap examined when a disk is put to rest, beyond the disks
+#: around it (:func:`candidates`): walls, and room to spare.
+CANDIDATES = 32
+
+
+def candidates(r_max, r_min):
+    """Room for the static bodies within the gap of a disk (``Rest.codes``): a disk of
+    radius ``r_max`` touches fewer than ``2 pi (r_max / r_min + 1)`` disks of radius
+    ``r_min`` or more (each takes an angle ``2 asin(r_min / (r_max + r_min))`` of its
+    rim), and :data:`CANDIDATES` more."""
+    return CANDIDATES + int(math.ceil(2.0 * math.pi * (r_max / r_min + 1.0)))
 
 
 @njit
@@ -642,10 +650,11 @@ def _cone(i, t, upx, upy, write, S, E, invm, gi, gf, head, nxt, wa, wb, wstart, 
 
 
 @njit(inline="always")
-def _listed(codes, n, code):
-    """Whether ``code`` is among the first ``n`` of ``codes``."""
+def _seen(seen, n, w, qx, qy):
+    """Whether the image ``(qx, qy)`` of segment ``w`` is among the first ``n`` rows of
+    ``seen``."""
     for k in range(n):
-        if codes[k] == code:
+        if seen[k, 0] == w and seen[k, 1] == qx and seen[k, 2] == qy:
             return True
     return False
 
@@ -674,7 +683,7 @@ def _statics(i, t, upx, upy, tol, S, E, invm, gi, gf, head, nxt, wa, wb, wstart,
             continue
         c = x if axis == 0 else y
         gap = c - r if side % 2 == 0 else gf[axis] - r - c
-        if gap <= tol and n < CANDIDATES:
+        if gap <= tol and n < codes.shape[0]:
             inward = 1.0 if side % 2 == 0 else -1.0
             nx = inward if axis == 0 else 0.0
             ny = 0.0 if axis == 0 else inward
@@ -687,6 +696,8 @@ def _statics(i, t, upx, upy, tol, S, E, invm, gi, gf, head, nxt, wa, wb, wstart,
     # each segment once): the side (flat) or an end point.
     ncx = gi[0]
     u0, u1, v0, v1, spread = block(i, E, gi, rest.wide)
+    seen = rest.near[1]  # (the segment images met, before the disks near it)
+    n_seen = 0
     for v in range(v0, v1 + 1):
         ky = v // gi[1] if gi[3] != 0 else 0
         for u in range(u0, u1 + 1):
@@ -703,9 +714,15 @@ def _statics(i, t, upx, upy, tol, S, E, invm, gi, gf, head, nxt, wa, wb, wstart,
                     continue
                 qx = wsx[k] + kx
                 qy = wsy[k] + ky
-                if spread and (abs(qx) > 1 or abs(qy) > 1
-                               or _listed(codes, n, SEGMENT_SUPPORT - w)):
-                    continue
+                if spread:
+                    # (A segment is listed in many cells of a footprint: each image
+                    # once.)
+                    if abs(qx) > 1 or abs(qy) > 1 or _seen(seen, n_seen, w, qx, qy):
+                        continue
+                    seen[n_seen, 0] = w
+                    seen[n_seen, 1] = qx
+                    seen[n_seen, 2] = qy
+                    n_seen += 1
                 shx = qx * gf[0]
                 shy = qy * gf[1]
                 ax = wa[w, 0] + shx
@@ -727,7 +744,7 @@ def _statics(i, t, upx, upy, tol, S, E, invm, gi, gf, head, nxt, wa, wb, wstart,
                     gap = dist - r
                     nx = (x - ex) / dist
                     ny = (y - ey) / dist
-                if gap <= tol and n < CANDIDATES:
+                if gap <= tol and n < codes.shape[0]:
                     codes[n] = SEGMENT_SUPPORT - w
                     angles[n] = math.atan2(upx * ny - upy * nx, upx * nx + upy * ny)
                     if flat and angles[n] == 0.0:
@@ -744,7 +761,7 @@ def _statics(i, t, upx, upy, tol, S, E, invm, gi, gf, head, nxt, wa, wb, wstart,
             dx = x - (xm + around[k, 1] * gf[0])
             dy = y - (ym + around[k, 2] * gf[1])
             dist = math.hypot(dx, dy)
-            if dist - (r + S[m, R]) <= tol and n < CANDIDATES:
+            if dist - (r + S[m, R]) <= tol and n < codes.shape[0]:
                 codes[n] = m
                 angles[n] = math.atan2(upx * dy - upy * dx, upx * dx + upy * dy)
                 n += 1

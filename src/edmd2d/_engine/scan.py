@@ -355,7 +355,7 @@ def _scan_wide_list(i, t, x, y, vx, vy, r, c, S, stamp, gf, wide, best, partner,
         if dtc < best:
             best = dtc
             partner = j
-            aux = pack_shift(-sx, -sy)
+            aux = pack_shift(-sx if shear is None or sy == 0 else 0, -sy)
             pst = stamp[j]
         m = wide.nnext[m]
     return best, partner, aux, pst
@@ -427,7 +427,7 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
                     best = dtc
                     kind = DISK
                     partner = j
-                    aux = pack_shift(kx, ky)
+                    aux = pack_shift(kx if shear is None or ky == 0 else 0, ky)
                     pst = stamp[j]
                 j = nxt[j]
             # The other wide disks listed there: j's image is at x_j - k' L.
@@ -438,14 +438,18 @@ def _scan_footprint(i, k, t, x, y, vx, vy, gx, gy, r, u0, u1, v0, v1, S, stamp, 
                     j = wide.disk[kk]
                     sx = kx - wide.nsx[m]
                     sy = ky - wide.nsy[m]
-                    if -1 <= sx <= 1 and -1 <= sy <= 1:
+                    # (Across a sheared boundary the offset adds up to a width: the
+                    # image may lie two widths over, and the collision takes the
+                    # nearest image, as the narrow disks' does.)
+                    across = shear is not None and sy != 0
+                    if (-1 <= sx <= 1 or (across and -2 <= sx <= 2)) and -1 <= sy <= 1:
                         dtc = _wide_pair(i, j, t, x, y, vx, vy, gx, gy, r, sx, sy, S, gf,
                                          gravity, growth, shear, best)
                         if dtc < best:
                             best = dtc
                             kind = DISK
                             partner = j
-                            aux = pack_shift(sx, sy)
+                            aux = pack_shift(0 if across else sx, sy)
                             pst = stamp[j]
                 m = wide.nnext[m]
             # The segments listed for the cell, shifted as for a centre in it: i's image

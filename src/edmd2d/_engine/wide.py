@@ -390,15 +390,16 @@ def block(d, E, gi, wide):
     return wide.rect[k, 0], wide.rect[k, 1], wide.rect[k, 2], wide.rect[k, 3], True
 
 
-def near_rows(n, gi, wide) -> int:
+def near_rows(n, gi, wide, segments=0) -> int:
     """Rows enough for :func:`near` with ``n`` disks on the grid ``gi``: each disk
     once per image of its cell in a 3x3 block (three on an axis of one cell, two on a
-    periodic axis of two), and each wide disk in up to nine images."""
+    periodic axis of two), and each wide disk in up to nine images; at least nine
+    images of each of ``segments`` wall segments (for a list of those met)."""
     images = 1
     for axis in range(2):
         cells = int(gi[axis])
         images *= 3 if cells == 1 else (2 if cells == 2 else 1)
-    return n * images + (0 if wide is None else 9 * len(wide.disk))
+    return max(n * images + (0 if wide is None else 9 * len(wide.disk)), 9 * segments)
 
 
 @kernel

@@ -124,3 +124,30 @@ def sheared_gap(p, q, box, offset):
         dx -= box.width * np.floor(dx / box.width + 0.5)
         best = min(best, np.hypot(dx, p[1] - (q[1] + sy * box.height)))
     return best
+
+
+def continuations(make, t_end, pieces, t_save, path):
+    """The simulation ``make()`` run to ``t_end`` in one call; and in ``pieces`` equal
+    calls, and through a checkpoint saved at ``t_save`` (to ``path``) and loaded:
+    ``(whole, [in_pieces, restarted])``, for comparisons bit for bit."""
+    whole = make()
+    whole.advance(until=t_end)
+    split = make()
+    for t in np.linspace(0.0, t_end, pieces + 1)[1:]:
+        split.advance(until=float(t))
+    restarted = make()
+    restarted.advance(until=t_save)
+    ed.checkpoint.save(restarted, path)
+    restarted = ed.checkpoint.load(path)
+    restarted.advance(until=t_end)
+    return whole, [split, restarted]
+
+
+def worst_gap(sim, stretches, collisions=2000):
+    """The smallest gap (:func:`smallest_gap`) seen after each of ``stretches`` runs of
+    ``collisions`` collisions of the sheared ``sim``."""
+    worst = math.inf
+    for _ in range(stretches):
+        sim.advance(collisions=collisions)
+        worst = min(worst, smallest_gap(sim))
+    return worst

@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 
 import edmd2d as ed
-from conftest import seed_of, smallest_gap
-from edmd2d import checkpoint, theory
+from conftest import continuations, seed_of, worst_gap
+from edmd2d import theory
 from edmd2d.reference import ReferenceSimulation
 
 
@@ -83,11 +83,7 @@ def test_no_overlap_through_the_sliding_boundary_and_peculiar_momentum_kept(rate
     rounding, and the peculiar momentum, zero at the start, stays zero (the total
     y momentum is zero, so ``d/dt sum m u_x = -rate P_y`` vanishes)."""
     sim = ed.make_gas(250, 0.6, seed=seed_of(12), shear_rate=rate)
-    worst = math.inf
-    for _ in range(60):
-        sim.advance(collisions=2000)
-        worst = min(worst, smallest_gap(sim))
-    assert worst > -1e-12
+    assert worst_gap(sim, 60) > -1e-12
     u = sim.peculiar_velocities
     scale = float(np.abs(u).sum())
     assert np.abs(u.sum(axis=0)).max() < 1e-12 * scale
@@ -101,17 +97,8 @@ def test_runs_in_pieces_and_restarts_from_checkpoints_are_bit_identical(tmp_path
         return ed.make_gas(200, 0.5, seed=seed_of(13), shear_rate=0.9,
                            thermostat=(1.0, 0.3))
 
-    whole = gas()
-    whole.advance(until=30.0)
-    pieces = gas()
-    for t in np.linspace(0.0, 30.0, 38)[1:]:
-        pieces.advance(until=float(t))
-    restarted = gas()
-    restarted.advance(until=13.0)
-    checkpoint.save(restarted, tmp_path / "half.npz")
-    restarted = checkpoint.load(tmp_path / "half.npz")
-    restarted.advance(until=30.0)
-    for other in (pieces, restarted):
+    whole, others = continuations(gas, 30.0, 37, 13.0, tmp_path / "half.npz")
+    for other in others:
         assert np.array_equal(other.positions, whole.positions)
         assert np.array_equal(other.velocities, whole.velocities)
         assert np.array_equal(other.unwrapped_positions, whole.unwrapped_positions)

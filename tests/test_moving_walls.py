@@ -90,6 +90,53 @@ def test_same_events_as_reference(seed, gravity, inelastic):
                                   rel=1e-9)
 
 
+ROUGH = [dict(tangential_restitution=0.6), dict(tangential_restitution=1.0),
+         dict(tangential_restitution=0.8, friction=0.2, wall_friction=0.1),
+         dict(tangential_restitution=0.4, wall_tangential_restitution=0.9,
+              restitution=0.9, tc=0.05)]
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_rough_disks_meet_moving_walls_as_the_reference(seed):
+    """Rough disks (tangential restitution, Coulomb friction with disks and walls,
+    the TC model) against a piston and a shaken segment: the segment turns the
+    tangential velocity relative to its own and does the work ``J_t t.u`` as well as
+    ``J_n n.u``, so kinetic, rotational and potential energy, less the work, plus what
+    is dissipated, stay constant to rounding.  Event for event against the oracle,
+    spins included."""
+    box, walls, motions, (pos, vel, rad, mass) = _moving_system(100 + seed)
+    rough = dict(ROUGH[seed % 4], angular_velocities=np.linspace(-2.0, 2.0, len(pos)))
+    gravity = {} if seed % 3 == 0 else dict(gravity=(0.3, -2.0))
+    resting = dict(resting=False) if gravity and "restitution" in rough else {}
+    sim = ed.Simulation(pos, vel, rad, mass, box=box, walls=walls, wall_motions=motions,
+                        **gravity, **rough, **resting)
+    sim._record_events(10_000)
+    ref = ReferenceSimulation(pos, vel, rad, mass, box=box, walls=walls,
+                              wall_motions=motions, **gravity, **rough)
+    e0 = sim.total_energy()
+    sim.advance(until=0.8)
+    ref.advance(until=0.8)
+    _assert_same_run(sim, ref, box)
+    np.testing.assert_allclose(sim.angular_velocities, ref.angular_velocities, rtol=0,
+                               atol=1e-8)
+    books = sim.total_energy() + sim.dissipated_energy() - sim.wall_work().sum()
+    assert books == pytest.approx(e0, rel=1e-12)
+
+
+def test_rough_disks_spin_on_the_moving_walls():
+    """The systems above meet the moving segments, whose tangential pushes change the
+    spins and whose work includes the tangential impulses."""
+    hits = 0
+    for seed in range(12):
+        box, walls, motions, (pos, vel, rad, mass) = _moving_system(100 + seed)
+        sim = ed.Simulation(pos, vel, rad, mass, box=box, walls=walls, wall_motions=motions,
+                            tangential_restitution=1.0)
+        sim._record_events(10_000)
+        sim.advance(until=0.8)
+        hits += sum(1 for _, k, _, j in sim._recorded_events() if k == "wall" and j < 2)
+    assert hits >= 10
+
+
 def test_the_random_systems_meet_the_moving_walls():
     """The systems above do exercise the moving segments: sides and ends of both."""
     parts = set()

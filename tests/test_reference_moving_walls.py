@@ -330,7 +330,6 @@ def test_no_motions_is_the_run_without_them():
     (dict(gravity=(0.0, -1.0), resting=Resting.of(1e-3, 1.0, 0.5)), None, "resting"),
     (dict(growth=0.1), None, "growth"),
     (dict(box=ed.Box(10.0, 10.0), shear_rate=0.1), None, "shear_rate"),
-    (dict(tangential_restitution=0.5), None, "rough"),
     (dict(wall_temperatures={0: 1.0}), None, "heated"),
     ({}, {1: ed.Oscillation(0.1, 1.0)}, "index"),
     ({}, {-1: ed.Oscillation(0.1, 1.0)}, "index"),

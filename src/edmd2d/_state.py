@@ -590,8 +590,7 @@ class EngineState:
         if moving is None:
             return
         with about("wall_motions"):
-            others = {"growth": growth, "shear": families.get("shear"),
-                      "rough disks": families.get("rough")}
+            others = {"growth": growth, "shear": families.get("shear")}
             for name, other in others.items():
                 if other is not None:
                     raise ValueError(f"moving wall segments do not combine with {name}")

@@ -1152,8 +1152,9 @@ class MovingWalls(Family):
     rounding.
 
     A moving segment cannot be heated; moving walls do not combine with growth,
-    shear, rough disks or disks that come to rest (yet: an inelastic gas under gravity
-    needs ``resting=False``), and they keep the uniform grid.
+    shear or disks that come to rest (yet: an inelastic gas under gravity needs
+    ``resting=False``).  With rough disks a segment turns the tangential velocity
+    relative to its own and does the work of the tangential impulse too.
 
     Attributes
     ----------

@@ -499,7 +499,7 @@ def run(control, particles, grid, walls, calendar, tallies, log,
                                       motion)
                 if rough is not None and sticks:
                     _rough.wall(i, t, kind, partner, aux, vix, viy, S, invm, acc, wacc, gf,
-                                wa, wb, rough)
+                                wa, wb, rough, motion)
                 stamp[i] += 1
                 redo0 = i
                 counts[C_WALL] += 1

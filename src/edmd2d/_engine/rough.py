@@ -33,17 +33,23 @@ from __future__ import annotations
 import math
 
 from .._jit import njit
+from . import moving as _moving
 from .layout import (
     A_DISSIPATED,
     A_THERMOSTAT,
     A_VIRIAL_XX,
     A_VIRIAL_XY,
     A_VIRIAL_YY,
+    A_WORK,
+    FIXED,
+    M_DX,
+    M_DY,
     SEGMENT,
     VX,
     VY,
     W_FX,
     W_FY,
+    W_WORK,
     R,
     X,
     Y,
@@ -121,11 +127,15 @@ def pair(i, j, t, aux, gf, vix, viy, vjx, vjy, S, invm, acc, rough):
 
 
 @njit
-def wall(i, t, kind, partner, aux, vix, viy, S, invm, acc, wacc, gf, wa, wb, rough):
+def wall(i, t, kind, partner, aux, vix, viy, S, invm, acc, wacc, gf, wa, wb, rough,
+         motion):
     """The tangential impulse of disk ``i`` on the wall of a BOX or SEGMENT event at
     ``t``, whose normal impulse changed its velocity from ``(vix, viy)``; a segment
-    receives the opposite impulse (``wacc``)."""
-    nx, ny, nn, _ = wall_normal(i, t, kind, partner, aux, S, gf, wa, wb, None)
+    receives the opposite impulse (``wacc``).  A moving segment (``motion``) turns the
+    tangential velocity relative to its own, ``u``, and does the work ``J_t t.u``
+    (``acc[A_WORK]``, ``wacc[partner, W_WORK]``): the energy taken in its frame is
+    dissipated, as at a fixed wall."""
+    nx, ny, nn, _ = wall_normal(i, t, kind, partner, aux, S, gf, wa, wb, motion)
     norm = math.sqrt(nn)
     nx /= norm
     ny /= norm
@@ -134,8 +144,15 @@ def wall(i, t, kind, partner, aux, vix, viy, S, invm, acc, wacc, gf, wa, wb, rou
         return
     tx = -ny
     ty = nx
+    ux = 0.0
+    uy = 0.0
+    moves = motion is not None and kind == SEGMENT and motion.kind[partner] != FIXED
+    if moves:
+        us = _moving.speed(partner, t, motion)
+        ux = us * motion.par[partner, M_DX]
+        uy = us * motion.par[partner, M_DY]
     ri = S[i, R]
-    g_t = S[i, VX] * tx + S[i, VY] * ty - ri * rough.w[i]
+    g_t = (S[i, VX] - ux) * tx + (S[i, VY] - uy) * ty - ri * rough.w[i]
     k = invm[i] + ri * ri * rough.inv_inertia[i]
     j_t = _limited(-(1.0 + rough.wall_beta) * g_t / k, jn, rough.wall_friction)
     _turn(i, t, rough)
@@ -146,6 +163,10 @@ def wall(i, t, kind, partner, aux, vix, viy, S, invm, acc, wacc, gf, wa, wb, rou
     if kind == SEGMENT:
         wacc[partner, W_FX] -= j_t * tx
         wacc[partner, W_FY] -= j_t * ty
+        if moves:
+            work = j_t * (ux * tx + uy * ty)
+            wacc[partner, W_WORK] += work
+            acc[A_WORK] += work
 
 
 @njit

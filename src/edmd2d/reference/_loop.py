@@ -123,9 +123,9 @@ class ReferenceSimulation(CollisionRules):
         (a ``begin`` left ``None`` becomes ``time``) or an
         :class:`~edmd2d.Oscillation`.  Segment ``k`` is at ``start + shift(t)``,
         ``end + shift(t)`` at time ``t`` (see :meth:`wall_positions`); the box does
-        not move.  Not with ``resting``, ``growth``, ``shear_rate``, rough disks or a
-        heated segment (:class:`ValueError`, as for an index that is not a segment's
-        or a value that is neither motion).
+        not move.  Not with ``resting``, ``growth``, ``shear_rate`` or a heated
+        segment (:class:`ValueError`, as for an index that is not a segment's or a
+        value that is neither motion).
 
     Attributes
     ----------
@@ -486,9 +486,6 @@ class ReferenceSimulation(CollisionRules):
             raise ValueError(  # noqa: TRY004
                 "wall_motions must be a dict {segment index: Translation or Oscillation}, "
                 f"got {type(wall_motions).__name__}")
-        if self.rough:
-            raise ValueError("wall_motions do not combine with rough disks "
-                             "(tangential_restitution, angular_velocities) yet")
         motions = {}
         for k, motion in wall_motions.items():
             if (isinstance(k, bool) or not isinstance(k, (int, np.integer))

@@ -38,8 +38,8 @@ class RoughRules:
     ``rough`` (whether any of it applies), the per-disk lists ``p``, ``v``, ``r``,
     ``m``, ``w`` (angular velocities),
     ``angle`` and ``inertia`` (``I``), the coefficients ``beta``, ``friction``,
-    ``wall_beta`` and ``wall_friction``, the tallies ``dissipated`` and the virial
-    (set up by ``ReferenceSimulation``)."""
+    ``wall_beta`` and ``wall_friction``, the tallies ``dissipated``, the virial and
+    ``wall_work`` (set up by ``ReferenceSimulation``)."""
 
     p: list[list[float]]
     v: list[list[float]]
@@ -57,6 +57,7 @@ class RoughRules:
     virial_xx: float
     virial_yy: float
     virial_xy: float
+    wall_work: list[float]
 
     def _turn(self, dt):
         """Advance every angle by ``w dt``."""
@@ -91,19 +92,24 @@ class RoughRules:
         self.virial_yy += d[1] * j_t * t[1]
         self.virial_xy += d[0] * j_t * t[1]
 
-    def _tangential_wall(self, i, n, jn, smooth):
+    def _tangential_wall(self, i, n, jn, smooth, uw=(0.0, 0.0), moving=None):
         """The tangential impulse of disk ``i`` on a wall (``n`` from the wall into the
-        disk's side, normal impulse ``jn >= 0``), after the normal one."""
+        disk's side, normal impulse ``jn >= 0``), after the normal one; on the moving
+        segment ``moving`` (velocity ``uw``) the tangential velocity relative to it
+        turns, and the segment does the work ``J_t t.uw``."""
         if smooth or self.wall_beta == -1.0:
             return
         t = (-n[1], n[0])
-        g_t = _dot(self.v[i], t) - self.r[i] * self.w[i]
+        v = self.v[i]
+        g_t = _dot((v[0] - uw[0], v[1] - uw[1]), t) - self.r[i] * self.w[i]
         k = 1.0 / self.m[i] + self.r[i] ** 2 / self.inertia[i]
         j_t = self._limited(-(1.0 + self.wall_beta) * g_t / k, jn, self.wall_friction)
         self.v[i] = [self.v[i][0] + j_t * t[0] / self.m[i],
                      self.v[i][1] + j_t * t[1] / self.m[i]]
         self.w[i] -= self.r[i] * j_t / self.inertia[i]
         self.dissipated -= j_t * g_t + 0.5 * k * j_t * j_t
+        if moving is not None:
+            self.wall_work[moving] += j_t * _dot(t, uw)
 
     @staticmethod
     def _limited(j_t, jn, mu):

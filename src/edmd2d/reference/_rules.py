@@ -272,18 +272,20 @@ class CollisionRules(RestingRules, RoughRules):
         self.v[i] = [v[0] - k * vn * n[0], v[1] - k * vn * n[1]]
         self._release(i)
         self.dissipated += 0.5 * (1.0 - e * e) * self.m[i] * vn * vn
+        jn = k * self.m[i] * abs(vn)  # (the normal impulse, for friction)
         if len(detail) > 3:
             # The work of the impulse J = -(1+e) m vn n on the disk, J.uw: the kinetic
             # energy it gained beyond the loss, since v'^2 - v^2 = (v'-uw)^2 - (v-uw)^2
             # + 2 (v' - v).uw.
             self.wall_work[partner] += -k * self.m[i] * vn * _dot(n, uw)
-            self._leave_moving(i, partner, part, p, a, n, uw)
+            jn += self.m[i] * self._leave_moving(i, partner, part, p, a, n, uw)
         if self.rough:
             # (The normal from the segment to the disk's centre, for the tangent.)
             if _dot(n, (p[0] - (a if part != "end" else b)[0],
                         p[1] - (a if part != "end" else b)[1])) < 0.0:
                 n = (-n[0], -n[1])
-            self._tangential_wall(i, n, k * self.m[i] * abs(vn), self._recent(i))
+            self._tangential_wall(i, n, jn, self._recent(i), uw,
+                                  partner if len(detail) > 3 else None)
         self._note(i)
         self.wall_collisions += 1
         if self.rest is not None:
@@ -294,10 +296,11 @@ class CollisionRules(RestingRules, RoughRules):
         """After a contact with an oscillating segment, disk ``i`` leaves it at the
         parting speed at least, ``sqrt(2 (A omega^2 + |g|) tol)`` with ``tol = 2^-40 (r
         + A)`` (slower, the segment could catch it again before the gap opens beyond
-        rounding, without end); the segment does that work too."""
+        rounding, without end); the segment does that work too.  Returns the normal
+        velocity added (0 if none)."""
         motion = self.motions.get(partner)
         if not isinstance(motion, Oscillation):
-            return
+            return 0.0
         if part == "side" and _dot(n, (p[0] - a[0], p[1] - a[1])) < 0.0:
             n = (-n[0], -n[1])  # (towards the disk)
         g = math.hypot(*self.gravity) if self.m[i] != math.inf else 0.0
@@ -309,6 +312,8 @@ class CollisionRules(RestingRules, RoughRules):
             w = [v[0] + (least - away) * n[0], v[1] + (least - away) * n[1]]
             self.wall_work[partner] += 0.5 * self.m[i] * (_dot(w, w) - _dot(v, v))
             self.v[i] = w
+            return least - away
+        return 0.0
 
     def _heat(self, i, wall, n):
         """Disk ``i`` leaves heated ``wall`` (normal ``n`` into the box)."""

@@ -97,8 +97,8 @@ class RoughRules:
         disk's side, normal impulse ``jn >= 0``), after the normal one; on the moving
         segment ``moving`` (velocity ``uw``) the tangential velocity relative to it
         turns, and the segment does the work ``J_t t.uw``."""
-        if smooth or self.wall_beta == -1.0:
-            return
+        if smooth or self.wall_beta == -1.0 or not jn > 0.0:
+            return  # (no normal impulse, no friction: as the engine)
         t = (-n[1], n[0])
         v = self.v[i]
         g_t = _dot((v[0] - uw[0], v[1] - uw[1]), t) - self.r[i] * self.w[i]

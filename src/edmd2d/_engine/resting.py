@@ -100,7 +100,7 @@ from .response import (
     _release,
     _wall_normals,
 )
-from .wide import block, near
+from .wide import block, cell, near
 
 #: The supports kept per resting disk.
 MAX_SUPPORTS = 4
@@ -694,15 +694,12 @@ def _statics(i, t, upx, upy, tol, S, E, invm, gi, gf, head, nxt, wa, wb, wstart,
             n += 1
     # Wall segments listed for the disk's cell (a wide disk: its footprint's cells,
     # each segment once): the side (flat) or an end point.
-    ncx = gi[0]
     u0, u1, v0, v1, spread = block(i, E, gi, rest.wide)
     seen = rest.near[1]  # (the segment images met, before the disks near it)
     n_seen = 0
     for v in range(v0, v1 + 1):
-        ky = v // gi[1] if gi[3] != 0 else 0
         for u in range(u0, u1 + 1):
-            kx = u // ncx if gi[2] != 0 else 0
-            c = (u - kx * ncx) + ncx * (v - ky * gi[1])
+            c, kx, ky = cell(u, v, gi)
             k0 = 0
             k1 = 0
             if wa.shape[0] > 0:  # (without segments the lists are not there)

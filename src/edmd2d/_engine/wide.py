@@ -128,16 +128,19 @@ def _list_rows(k, v0, v1, gi, wide, slid, put):
                 _take(k, u, v, wide)
 
 
+@njit(inline="always")
+def cell(u, v, gi):
+    """The cell of the unwrapped cell ``(u, v)`` and the periods ``(kx, ky)`` by which
+    it lies outside the grid (0 on a walled axis)."""
+    kx = u // gi[0] if gi[2] != 0 else 0
+    ky = v // gi[1] if gi[3] != 0 else 0
+    return (u - kx * gi[0]) + gi[0] * (v - ky * gi[1]), kx, ky
+
+
 @njit
 def _put(k, u, v, gi, wide):
     """List wide disk ``k`` in the unwrapped cell ``(u, v)``."""
-    kx = 0
-    ky = 0
-    if gi[2] != 0:
-        kx = u // gi[0]
-    if gi[3] != 0:
-        ky = v // gi[1]
-    c = (u - kx * gi[0]) + gi[0] * (v - ky * gi[1])
+    c, kx, ky = cell(u, v, gi)
     m = _slot(k, u, v, wide)
     wide.nsx[m] = kx
     wide.nsy[m] = ky
@@ -282,14 +285,9 @@ def slide(n, slid_old, slid_new, gi, wide, rows):
         if v0 >= 0 and v1 < ncy:
             continue
         for v in range(v0, v1 + 1):
-            if 0 <= v < ncy:
-                continue
-            c0, c1 = columns(wide.rect[k, 0], wide.rect[k, 1], v, gi, slid_old)
-            for u in range(c0, c1 + 1):
-                _take(k, u, v, wide)
-            c0, c1 = columns(wide.rect[k, 0], wide.rect[k, 1], v, gi, slid_new)
-            for u in range(c0, c1 + 1):
-                _put(k, u, v, gi, wide)
+            if not 0 <= v < ncy:
+                _list_rows(k, v, v, gi, wide, slid_old, False)
+                _list_rows(k, v, v, gi, wide, slid_new, True)
         rows[n] = wide.disk[k]
         n += 1
     return n
@@ -342,12 +340,9 @@ def near(d, E, gi, head, nxt, wide, out):
                 m = wide.nnext[m]
         return n
     k = wide.index[d]
-    ncx = gi[0]
     for v in range(wide.rect[k, 2], wide.rect[k, 3] + 1):
-        ky = v // gi[1] if gi[3] != 0 else 0
         for u in range(wide.rect[k, 0], wide.rect[k, 1] + 1):
-            kx = u // ncx if gi[2] != 0 else 0
-            c = (u - kx * ncx) + ncx * (v - ky * gi[1])
+            c, kx, ky = cell(u, v, gi)
             j = head[c]
             while j >= 0:
                 out[n, 0] = j
@@ -409,15 +404,12 @@ def first_overlap(pos, rad, gi, gf, head, nxt, wide, tol, slid, offset):
     distance; ``(-1, -1, 0.0)`` for none.  (Narrow pairs are checked on the cells.)
     Under shear ``slid`` is the images' column shift and ``offset`` their offset (-1 and
     0 without)."""
-    ncx = gi[0]
     for k in range(wide.disk.shape[0]):
         i = wide.disk[k]
         for v in range(wide.rect[k, 2], wide.rect[k, 3] + 1):
-            ky = v // gi[1] if gi[3] != 0 else 0
             c0, c1 = columns(wide.rect[k, 0], wide.rect[k, 1], v, gi, slid)
             for u in range(c0, c1 + 1):
-                kx = u // ncx if gi[2] != 0 else 0
-                c = (u - kx * ncx) + ncx * (v - ky * gi[1])
+                c, kx, ky = cell(u, v, gi)
                 j = head[c]
                 while j >= 0:
                     dx = pos[i, 0] - (pos[j, 0] + kx * gf[0] + ky * offset)
